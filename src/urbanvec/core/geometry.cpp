@@ -1,0 +1,30 @@
+#include "urbanvec/core/geometry.hpp"
+
+namespace urbanvec {
+
+double signedArea(const Ring& ring) {
+  double twice = 0.0;
+  for (size_t i = 0; i + 1 < ring.size(); ++i) twice += cross(ring[i], ring[i + 1]);
+  if (!ring.empty() && ring.front() != ring.back()) twice += cross(ring.back(), ring.front());
+  return 0.5 * twice;
+}
+
+double area(const Polygon& polygon) {
+  double a = std::fabs(signedArea(polygon.outer));
+  for (const Ring& hole : polygon.holes) a -= std::fabs(signedArea(hole));
+  return a;
+}
+
+double area(const MultiPolygon& polygons) {
+  double a = 0.0;
+  for (const Polygon& p : polygons) a += area(p);
+  return a;
+}
+
+double length(const LineString& line) {
+  double l = 0.0;
+  for (size_t i = 0; i + 1 < line.size(); ++i) l += distance(line[i], line[i + 1]);
+  return l;
+}
+
+}  // namespace urbanvec

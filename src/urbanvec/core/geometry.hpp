@@ -1,0 +1,55 @@
+// Plain geometry types shared by every module (no GDAL/GEOS here). Coordinates are in the unit of the
+// frame they belong to: world units (metres of a projected CRS) at the I/O boundary, or cell units
+// inside raster-derived algorithms.
+#pragma once
+
+#include <cmath>
+#include <variant>
+#include <vector>
+
+namespace urbanvec {
+
+struct Vec2 {
+  double x = 0.0;
+  double y = 0.0;
+  Vec2() = default;
+  Vec2(double x_, double y_) : x(x_), y(y_) {}
+  Vec2 operator+(const Vec2& o) const { return {x + o.x, y + o.y}; }
+  Vec2 operator-(const Vec2& o) const { return {x - o.x, y - o.y}; }
+  Vec2 operator*(double s) const { return {x * s, y * s}; }
+  Vec2 operator/(double s) const { return {x / s, y / s}; }
+  Vec2& operator+=(const Vec2& o) { x += o.x; y += o.y; return *this; }
+  Vec2& operator-=(const Vec2& o) { x -= o.x; y -= o.y; return *this; }
+  bool operator==(const Vec2& o) const { return x == o.x && y == o.y; }
+  bool operator!=(const Vec2& o) const { return !(*this == o); }
+};
+
+inline double dot(const Vec2& a, const Vec2& b) { return a.x * b.x + a.y * b.y; }
+inline double cross(const Vec2& a, const Vec2& b) { return a.x * b.y - a.y * b.x; }
+inline double length(const Vec2& a) { return std::hypot(a.x, a.y); }
+inline double distance(const Vec2& a, const Vec2& b) { return length(a - b); }
+
+using LineString = std::vector<Vec2>;
+/// A closed ring; the first point is repeated at the end.
+using Ring = std::vector<Vec2>;
+
+struct Polygon {
+  Ring outer;
+  std::vector<Ring> holes;
+};
+
+using MultiPolygon = std::vector<Polygon>;
+using MultiLineString = std::vector<LineString>;
+
+/// Any geometry a layer can hold; monostate means "no geometry".
+using Geometry = std::variant<std::monostate, Vec2, LineString, Polygon, MultiPolygon, MultiLineString>;
+
+/// Signed area of a ring (positive when counter-clockwise in a y-up frame).
+double signedArea(const Ring& ring);
+/// Area of a polygon: outer minus holes, whatever their orientation.
+double area(const Polygon& polygon);
+double area(const MultiPolygon& polygons);
+/// Length of a line string.
+double length(const LineString& line);
+
+}  // namespace urbanvec

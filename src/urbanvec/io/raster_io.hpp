@@ -1,0 +1,43 @@
+// Reading and writing single-band rasters with GDAL into plain grids.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "urbanvec/core/grid.hpp"
+
+namespace urbanvec::io {
+
+/// GDAL's name of a band's data type, e.g. "Byte", "Float32".
+struct RasterInfo {
+  GridSpec spec;
+  std::string dataType;
+  std::optional<double> nodata;
+  int bandCount = 0;
+};
+
+/// Opens a raster and describes it; throws urbanvec::Error (naming the file) when it is missing or
+/// not a raster GDAL can read. `role` names the input in messages ("land-use raster").
+RasterInfo inspectRaster(const std::string& path, const std::string& role);
+
+/// Reads band 1 converted to T, with its frame and nodata.
+template <class T>
+Grid<T> readRasterBand(const std::string& path, const std::string& role, RasterInfo* info = nullptr);
+
+struct RasterWriteOptions {
+  std::string format = "GTiff";
+  std::vector<std::string> creationOptions;  ///< NAME=VALUE, GDAL's -co
+};
+
+/// Writes one band to `path` (which the caller makes atomic) with the frame and CRS of `spec`.
+template <class T>
+void writeRasterBand(const std::string& path, const GridSpec& spec, const Grid<T>& grid,
+                     std::optional<double> nodata, const RasterWriteOptions& options = {});
+
+/// Throws an error naming both files and what differs when two frames are not the same grid
+/// (size, geotransform, CRS).
+void requireSameGrid(const GridSpec& a, const std::string& aPath, const GridSpec& b,
+                     const std::string& bPath);
+
+}  // namespace urbanvec::io

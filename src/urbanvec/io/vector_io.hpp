@@ -1,0 +1,46 @@
+// Reading and writing vector layers with OGR, converting to and from the plain types of core/layer.hpp.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "urbanvec/core/layer.hpp"
+
+namespace urbanvec::io {
+
+struct VectorWriteOptions {
+  std::string format;                           ///< OGR driver; empty = from the extension (GPKG default)
+  std::vector<std::string> layerCreationOptions;  ///< NAME=VALUE, -lco
+  std::vector<std::string> datasetCreationOptions;  ///< NAME=VALUE, -dsco
+  std::string crsWkt;                           ///< CRS of every layer; empty = none
+  std::map<std::string, std::string> layerStylesQml;  ///< layer name -> QGIS style (QML), GPKG only
+};
+
+/// The OGR driver for an output path: from -of if given, else from its extension.
+std::string vectorFormatFor(const std::string& path, const std::string& requestedFormat);
+
+/// Writes all layers to a new dataset at `path` (the caller makes it atomic). Throws urbanvec::Error.
+void writeVectorDataset(const std::string& path, const std::vector<Layer>& layers,
+                        const VectorWriteOptions& options);
+
+struct VectorReadOptions {
+  std::string targetCrs;  ///< reproject to this CRS (WKT or any user string GDAL accepts); empty = keep
+};
+
+struct LayerRead {
+  Layer layer;
+  std::string crsWkt;  ///< the layer's CRS before any reprojection; empty when it has none
+};
+
+/// Names of the vector layers in a dataset; throws when it is missing or not a vector dataset.
+std::vector<std::string> listVectorLayers(const std::string& path, const std::string& role);
+
+/// Reads one layer (all fields, geometries as plain types), or nothing when the dataset has no layer
+/// of that name. `role` names the input in messages.
+std::optional<LayerRead> readVectorLayer(const std::string& path, const std::string& layerName,
+                                         const std::string& role,
+                                         const VectorReadOptions& options = {});
+
+}  // namespace urbanvec::io

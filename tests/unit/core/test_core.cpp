@@ -1,0 +1,102 @@
+#include <gtest/gtest.h>
+
+#include "urbanvec/app/command.hpp"
+#include "urbanvec/core/error.hpp"
+#include "urbanvec/core/geometry.hpp"
+#include "urbanvec/core/grid.hpp"
+#include "urbanvec/core/landuse.hpp"
+#include "urbanvec/core/progress.hpp"
+#include "urbanvec/core/random.hpp"
+#include "urbanvec/core/utm.hpp"
+
+using namespace urbanvec;
+
+TEST(GeoTransform, RoundTripsNorthUpSouthUpAndRotated) {
+  for (const std::array<double, 6>& c : {std::array<double, 6>{1000, 12, 0, 5000, 0, -12},
+                                         std::array<double, 6>{1000, 12, 0, 5000, 0, 12},
+                                         std::array<double, 6>{1000, 8.48528, 8.48528, 5000, 8.48528, -8.48528}}) {
+    GeoTransform t{c};
+    const Vec2 w = t.pixelToWorld(3.5, 7.25);
+    const Vec2 p = t.worldToPixel(w);
+    EXPECT_NEAR(p.x, 3.5, 1e-9);
+    EXPECT_NEAR(p.y, 7.25, 1e-9);
+    EXPECT_NEAR(t.cellSize(), 12.0, 1e-4);
+  }
+}
+
+TEST(GeoTransform, SingularTransformIsAnError) {
+  GeoTransform t{{0, 0, 0, 0, 0, 0}};
+  EXPECT_THROW(t.worldToPixel({1, 1}), Error);
+}
+
+TEST(Geometry, AreaOfSquareWithHole) {
+  Polygon p{{{0, 0}, {10, 0}, {10, 10}, {0, 10}, {0, 0}}, {{{2, 2}, {2, 4}, {4, 4}, {4, 2}, {2, 2}}}};
+  EXPECT_DOUBLE_EQ(area(p), 96.0);
+  EXPECT_DOUBLE_EQ(signedArea(p.outer), 100.0);
+  EXPECT_DOUBLE_EQ(length(LineString{{0, 0}, {3, 4}, {3, 10}}), 11.0);
+}
+
+TEST(LandUse, CodesAndNames) {
+  EXPECT_EQ(static_cast<int>(LandUse::SecondaryRoad), 2);
+  EXPECT_EQ(static_cast<int>(LandUse::PrimaryRoad), 3);
+  EXPECT_EQ(static_cast<int>(LandUse::Reserved), 8);
+  EXPECT_EQ(landUseName(LandUse::Commercial), "commercial");
+  EXPECT_EQ(parseLandUse("Secondary Road"), LandUse::SecondaryRoad);
+  EXPECT_EQ(parseLandUse("INDUSTRIAL"), LandUse::Industrial);
+  EXPECT_FALSE(parseLandUse("farmland").has_value());
+  EXPECT_EQ(landUseFromCode(kLandUseNodata), LandUse::Unused);
+  EXPECT_TRUE(isDeveloped(LandUse::Park));
+  EXPECT_FALSE(isDeveloped(LandUse::Reserved));
+}
+
+TEST(Utm, ZonesIncludingExceptions) {
+  EXPECT_EQ(utmEpsgFor(7.42, 43.74), 32632);   // Monaco
+  EXPECT_EQ(utmEpsgFor(14.40, 50.10), 32633);  // Prague
+  EXPECT_EQ(utmEpsgFor(-43.2, -22.9), 32723);  // Rio de Janeiro
+  EXPECT_EQ(utmEpsgFor(5.3, 60.4), 32632);     // Bergen (Norway exception)
+  EXPECT_EQ(utmEpsgFor(15.6, 78.2), 32633);    // Longyearbyen (Svalbard exception)
+  EXPECT_EQ(utmEpsgFor(179.99, 10), 32660);
+  EXPECT_EQ(utmEpsgFor(-180.0, 10), 32601);
+}
+
+TEST(Progress, SubRangesAreMonotonicAndCancel) {
+  std::vector<double> seen;
+  Progress root = monotonicProgress([&](double f, std::string_view) { seen.push_back(f); return true; });
+  Progress second = subProgress(root, 0.5, 1.0);
+  reportProgress(subProgress(root, 0.0, 0.5), 1.0, "a");
+  reportProgress(second, 0.0, "b");
+  reportProgress(root, 0.2, "late");  // must not go backwards
+  reportProgress(second, 1.0, "b");
+  EXPECT_EQ(seen, (std::vector<double>{0.5, 0.5, 0.5, 1.0}));
+  Progress stop = [](double, std::string_view) { return false; };
+  EXPECT_THROW(reportProgress(stop, 0.1, "x"), Cancelled);
+}
+
+TEST(Random, DerivedSeedsDifferPerItemAndAreStable) {
+  EXPECT_NE(deriveSeed(1, 0), deriveSeed(1, 1));
+  EXPECT_NE(deriveSeed(1, 0), deriveSeed(2, 0));
+  EXPECT_EQ(deriveSeed(42, 7), deriveSeed(42, 7));
+}
+
+TEST(Arguments, ParsesDefaultsRangesAndUsageErrors) {
+  app::CommandSpec spec;
+  spec.name = "demo";
+  spec.positionals = {{"input", "", app::Role::InputFile}, {"output", "", app::Role::OutputFile}};
+  spec.options = {app::option("-tr", app::ValueType::Real, "<m>", "cell size").byDefault("12").atLeast(1e-9),
+                  app::option("-te", app::ValueType::Real, "<xmin ymin xmax ymax>", "extent").values(4)};
+  app::ParsedArgs a = app::parseArguments(spec, {"in", "-te", "0", "-5", "10", "10", "out"});
+  EXPECT_DOUBLE_EQ(a.real("-tr"), 12.0);
+  EXPECT_FALSE(a.given("-tr"));
+  EXPECT_EQ(a.values("-te").size(), 4u);
+  EXPECT_EQ(a.positionals(), (std::vector<std::string>{"in", "out"}));
+  EXPECT_THROW(app::parseArguments(spec, {"in", "out", "-bogus"}), app::UsageError);
+  EXPECT_THROW(app::parseArguments(spec, {"in"}), app::UsageError);
+  EXPECT_THROW(app::parseArguments(spec, {"in", "out", "-tr", "abc"}), app::UsageError);
+  try {
+    app::parseArguments(spec, {"in", "out", "-tr", "0"});
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::InvalidOption);
+    EXPECT_STREQ(e.what(), "-tr must be at least 1e-09, got 0");
+  }
+}
