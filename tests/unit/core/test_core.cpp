@@ -100,3 +100,18 @@ TEST(Arguments, ParsesDefaultsRangesAndUsageErrors) {
     EXPECT_STREQ(e.what(), "-tr must be at least 1e-09, got 0");
   }
 }
+
+#include "urbanvec/core/geos.hpp"
+
+TEST(Geos, RoundTripsPolygonWithHoleAndComputesArea) {
+  geos::Context ctx;
+  Polygon p{{{0, 0}, {10, 0}, {10, 10}, {0, 10}}, {{{2, 2}, {2, 4}, {4, 4}, {4, 2}}}};
+  geos::GeomPtr g = ctx.polygon(p);
+  double a = 0;
+  GEOSArea_r(ctx.handle(), g.get(), &a);
+  EXPECT_DOUBLE_EQ(a, 96.0);
+  MultiPolygon back = ctx.toPolygons(g.get());
+  ASSERT_EQ(back.size(), 1u);
+  EXPECT_DOUBLE_EQ(area(back[0]), 96.0);
+  EXPECT_EQ(back[0].outer.size(), 5u);  // closed
+}

@@ -1,0 +1,60 @@
+// A thin RAII layer over GEOS's reentrant C API, and conversions between GEOS and core geometry.
+// Every module that needs robust planar operations (noding, polygonize, overlay, distances) uses this
+// rather than its own wrapper. One GeosContext per thread.
+#pragma once
+
+#include <geos_c.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "urbanvec/core/geometry.hpp"
+
+namespace urbanvec::geos {
+
+class Context;
+
+/// Owning pointer to a GEOS geometry, destroyed with the context that made it.
+struct GeomDeleter {
+  GEOSContextHandle_t handle = nullptr;
+  void operator()(GEOSGeometry* g) const {
+    if (g) GEOSGeom_destroy_r(handle, g);
+  }
+};
+using GeomPtr = std::unique_ptr<GEOSGeometry, GeomDeleter>;
+
+class Context {
+ public:
+  Context();
+  ~Context();
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+
+  GEOSContextHandle_t handle() const { return handle_; }
+  /// Takes ownership of a raw result; throws urbanvec::Error (Internal) naming `what` when it is null.
+  GeomPtr own(GEOSGeometry* g, const char* what) const;
+
+  GeomPtr point(const Vec2& p) const;
+  GeomPtr lineString(const LineString& line) const;
+  GeomPtr polygon(const Polygon& polygon) const;
+  GeomPtr multiPolygon(const MultiPolygon& polygons) const;
+  GeomPtr multiLineString(const MultiLineString& lines) const;
+  /// A collection taking ownership of the parts (GEOS_GEOMETRYCOLLECTION, GEOS_MULTIPOLYGON, ...).
+  GeomPtr collection(int type, std::vector<GeomPtr> parts) const;
+
+  /// Polygonal parts of any geometry (Polygon, MultiPolygon, or collections of them).
+  MultiPolygon toPolygons(const GEOSGeometry* g) const;
+  /// Linear parts of any geometry.
+  MultiLineString toLines(const GEOSGeometry* g) const;
+  LineString coordinates(const GEOSGeometry* lineOrRing) const;
+
+  /// Last error GEOS reported on this context.
+  const std::string& lastError() const { return lastError_; }
+
+ private:
+  GEOSContextHandle_t handle_;
+  std::string lastError_;
+};
+
+}  // namespace urbanvec::geos
