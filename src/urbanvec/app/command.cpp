@@ -162,7 +162,7 @@ class ProgressPrinter {
 
 void printTopHelp(std::ostream& out) {
   out << "Usage: urbanvec <subcommand> [options] <inputs...> <output>\n"
-         "       urbanvec --version | --help | <subcommand> --help\n\n"
+         "       urbanvec --version | --help | --json-usage | <subcommand> --help\n\n"
          "urbanvec turns gridded urban land-use data into a vector city (roads, blocks, parcels)\n"
          "and provides the neighbouring tools of procedural urban modelling.\n\nSubcommands:\n";
   std::vector<const Registered*> sorted;
@@ -334,6 +334,19 @@ int runMain(int argc, char** argv) {
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "-help") {
     printTopHelp(std::cout);
     return args.empty() ? 2 : 0;
+  }
+  if (args[0] == "--json-usage") {
+    // Every subcommand's usage in one document: the QGIS provider builds its algorithms from it.
+    std::vector<const Registered*> sorted;
+    for (const Registered& r : registry()) sorted.push_back(&r);
+    std::sort(sorted.begin(), sorted.end(), [](auto* a, auto* b) { return a->spec.name < b->spec.name; });
+    nlohmann::ordered_json all;
+    all["program"] = "urbanvec";
+    all["version"] = kVersion;
+    all["commands"] = nlohmann::json::array();
+    for (const Registered* r : sorted) all["commands"].push_back(nlohmann::ordered_json::parse(jsonUsage(r->spec)));
+    std::cout << all.dump(2) << "\n";
+    return 0;
   }
   if (args[0] == "--version" || args[0] == "-version") {
     std::cout << "urbanvec " << kVersion << "\n";
