@@ -12,6 +12,7 @@
 
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/io/gdal_init.hpp"
+#include "urbanvec/io/layer_styles.hpp"
 
 namespace urbanvec::io {
 
@@ -273,7 +274,14 @@ void writeVectorDataset(const std::string& path, const std::vector<Layer>& layer
         throw ioError("cannot write a feature of layer '" + layer.name + "' (" + lastGdalMessage() + ")");
     }
   }
-  if (format == "GPKG") writeLayerStyles(*ds, options.layerStylesQml);
+  if (format == "GPKG") {
+    std::map<std::string, std::string> styles = options.layerStylesQml;
+    if (options.defaultStyles)
+      for (const Layer& layer : layers)
+        if (!styles.count(layer.name) && !defaultStyleFor(layer.name).empty())
+          styles[layer.name] = defaultStyleFor(layer.name);
+    writeLayerStyles(*ds, styles);
+  }
   if (transactions && ds->CommitTransaction() != OGRERR_NONE)
     throw ioError("cannot write '" + path + "' (" + std::string(lastGdalMessage()) + ")");
   CPLErrorReset();

@@ -16,6 +16,8 @@ struct VectorWriteOptions {
   std::vector<std::string> datasetCreationOptions;  ///< NAME=VALUE, -dsco
   std::string crsWkt;                           ///< CRS of every layer; empty = none
   std::map<std::string, std::string> layerStylesQml;  ///< layer name -> QGIS style (QML), GPKG only
+  /// Also store io::defaultStyleFor(name) for standard layer names without an explicit style.
+  bool defaultStyles = true;
 };
 
 /// The OGR driver for an output path: from -of if given, else from its extension.
