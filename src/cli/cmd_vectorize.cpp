@@ -1,0 +1,263 @@
+// `urbanvec vectorize`: gridded land use -> vector road network (issue 3: spec sexton-vectorizer.md
+// stages A1–A5, B1–B6; docs/vectorize.md).
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+#include "urbanvec/app/command.hpp"
+#include "urbanvec/core/error.hpp"
+#include "urbanvec/io/atomic_output.hpp"
+#include "urbanvec/io/grid_input.hpp"
+#include "urbanvec/io/vector_io.hpp"
+#include "urbanvec/vectorize/road_checks.hpp"
+#include "urbanvec/vectorize/road_output.hpp"
+#include "urbanvec/vectorize/vectorize.hpp"
+
+namespace urbanvec {
+namespace {
+
+using app::option;
+using app::Role;
+using app::ValueType;
+
+/// A default taken from the options struct, printed without trailing zeros.
+std::string text(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+app::CommandSpec spec() {
+  const vectorize::VectorizeOptions d;
+  app::CommandSpec s;
+  s.name = "vectorize";
+  s.summary = "Turns gridded urban land use into a vector road network (roads, road_nodes).";
+  s.description =
+      "Implements the road half of Sexton's vectorizer: simulated blocks by flood fill, extraneous intersection "
+      "patch cleaning, a road graph on 1-wide secondary and 2-wide primary road cells, external block perimeters, "
+      "intersection straightening, smoothing, primary/secondary connection, short-cycle removal, intersection "
+      "simplification and curve smoothing. Writes the layers roads (one LineString per segment between "
+      "intersections, dead ends or class changes; perimeters as road_class=perimeter) and road_nodes, in the CRS "
+      "of the land-use raster. All rasters given together must share size, geotransform and CRS. Distances are "
+      "in cells (patch widths). See docs/vectorize.md.";
+  s.group = "Vectorization";
+  s.positionals = {{"landuse", "Land-use raster: class codes 0..8 (255 nodata), or any values mapped with -classes.",
+                    Role::InputRaster},
+                   {"output", "Output vector dataset (GeoPackage by default).", Role::OutputVector}};
+  auto& o = s.options;
+  o.push_back(option("-density", ValueType::String, "<raster>", "Population per cell (Float32), same grid.")
+                  .withRole(Role::InputRaster));
+  o.push_back(option("-parcels", ValueType::String, "<raster>", "Parcel id per cell (Int32, 0 = none), same grid.")
+                  .withRole(Role::InputRaster));
+  o.push_back(option("-parcel-table", ValueType::String, "<csv>",
+                     "Parcel list parcel_id,land_use,population,cells (needs -parcels).")
+                  .withRole(Role::InputFile));
+  o.push_back(option("-classes", ValueType::String, "<csv>",
+                     "Table value,class_name mapping the land-use raster's values to the nine classes (nodata = "
+                     "unused), for rasters from other simulations or land-cover products.")
+                  .withRole(Role::InputFile));
+  o.push_back(app::seedOption());
+  for (const app::OptionSpec& v : app::vectorOutputOptions()) o.push_back(v);
+  o.push_back(option("-debug-stages", ValueType::String, "<dir>",
+                     "Write the road graph after each stage (links and nodes layers per stage) to <dir>/stages.gpkg.")
+                  .withRole(Role::OutputFolder)
+                  .isAdvanced());
+  o.push_back(option("-timings", ValueType::Flag, "", "Print time, peak memory and counts per stage.").isAdvanced());
+  o.push_back(option("-check", ValueType::Flag, "",
+                     "Check the road topology (crossings only at shared nodes, no zero-length pieces, no duplicate "
+                     "nodes) and print the result; a failed check is an error.")
+                  .isAdvanced());
+  o.push_back(option("-primary-node", ValueType::Choice, "<where>",
+                     "Primary node at the patch's south-east corner (paper) or the south-east neighbour's centre "
+                     "(thesis).")
+                  .oneOf({"corner", "neighbour"})
+                  .byDefault("corner")
+                  .isAdvanced());
+  o.push_back(option("-max-link", ValueType::Real, "<cells>", "Links this long or longer are subdivided (A4.6).")
+                  .byDefault(text(d.roadGraph.maxLinkLength))
+                  .withUnit("cells")
+                  .atLeast(0.1)
+                  .isAdvanced());
+  o.push_back(option("-straighten-window", ValueType::Real, "<cells>",
+                     "Intersection straightening fits nodes within this distance (B1).")
+                  .byDefault(text(d.straightening.window))
+                  .withUnit("cells")
+                  .atLeast(0)
+                  .isAdvanced());
+  o.push_back(option("-straighten-residual", ValueType::Real, "<cells>",
+                     "Largest residual norm of a fit that is snapped (B1).")
+                  .byDefault(text(d.straightening.maxResidual))
+                  .withUnit("cells")
+                  .atLeast(0)
+                  .isAdvanced());
+  o.push_back(option("-smooth-passes", ValueType::Integer, "<n>", "Road smoothing passes (B2).")
+                  .byDefault(text(d.roadSmoothing.passes))
+                  .atLeast(0)
+                  .isAdvanced());
+  o.push_back(option("-perimeter-passes", ValueType::Integer, "<n>", "Smoothing passes of perimeter lines (B2, Q8).")
+                  .byDefault(text(d.roadSmoothing.perimeterPasses))
+                  .atLeast(0)
+                  .isAdvanced());
+  o.push_back(option("-straight-angle", ValueType::Real, "<degrees>",
+                     "Road pairs straighter than this re-straighten their intersection (B2).")
+                  .byDefault(text(d.roadSmoothing.straightAngle))
+                  .withUnit("degrees")
+                  .atLeast(90)
+                  .atMost(180)
+                  .isAdvanced());
+  o.push_back(option("-cycle-nodes", ValueType::Integer, "<n>", "Road cycles of at most this many nodes lose a segment (B4).")
+                  .byDefault(text(d.cycles.maxCycleNodes))
+                  .atLeast(0)
+                  .isAdvanced());
+  o.push_back(option("-dead-end-angle", ValueType::Real, "<degrees>",
+                     "Dead ends at an intersection closer than this angle to another road are removed (B5).")
+                  .byDefault(text(d.intersections.deadEndAngle))
+                  .withUnit("degrees")
+                  .atLeast(0)
+                  .atMost(180)
+                  .isAdvanced());
+  o.push_back(option("-primary-close", ValueType::Real, "<cells>",
+                     "Primary nodes closer than this to an intersection are merged into it (B5).")
+                  .byDefault(text(d.intersections.primaryDistance))
+                  .withUnit("cells")
+                  .atLeast(0)
+                  .isAdvanced());
+  o.push_back(option("-secondary-close", ValueType::Real, "<cells>",
+                     "Secondary nodes closer than this to an intersection are merged into it (B5).")
+                  .byDefault(text(d.intersections.secondaryDistance))
+                  .withUnit("cells")
+                  .atLeast(0)
+                  .isAdvanced());
+  o.push_back(option("-curve-passes", ValueType::Integer, "<n>", "Curve smoothing passes (B6).")
+                  .byDefault(text(d.curves.passes))
+                  .atLeast(0)
+                  .isAdvanced());
+  o.push_back(option("-curve-angles", ValueType::Real, "<a3> <a2> <a1>",
+                     "Bends sharper than these interior angles get 3, 2, 1 extra nodes per side (B6).")
+                  .values(3)
+                  .byDefault(text(d.curves.angleThreeNodes) + " " + text(d.curves.angleTwoNodes) + " " +
+                             text(d.curves.angleOneNode))
+                  .withUnit("degrees")
+                  .atLeast(0)
+                  .atMost(180)
+                  .isAdvanced());
+  o.push_back(option("-simplify", ValueType::Real, "<cells>",
+                     "Tolerance of the topology-preserving simplification of the output segments (0 = keep every "
+                     "graph node).")
+                  .byDefault(text(d.outputSimplification))
+                  .withUnit("cells")
+                  .atLeast(0)
+                  .isAdvanced());
+  s.examples = {"urbanvec vectorize -density density.tif -parcels parcels.tif -parcel-table parcels.csv landuse.tif city.gpkg",
+                "urbanvec vectorize -classes corine_classes.csv -debug-stages stages landcover.tif roads.gpkg"};
+  s.outputLayers = {"roads", "road_nodes"};
+  return s;
+}
+
+void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
+  const std::string landUse = args.positionals()[0];
+  const std::string output = args.positionals()[1];
+  const bool overwrite = args.flag("-overwrite");
+
+  vectorize::VectorizeOptions options;
+  options.roadGraph.primaryNodeAtCorner = args.str("-primary-node") == "corner";
+  options.roadGraph.maxLinkLength = args.real("-max-link");
+  options.connection.maxLinkLength = options.roadGraph.maxLinkLength;
+  options.straightening.window = args.real("-straighten-window");
+  options.straightening.maxResidual = args.real("-straighten-residual");
+  options.roadSmoothing.passes = static_cast<int>(args.integer("-smooth-passes"));
+  options.roadSmoothing.perimeterPasses = static_cast<int>(args.integer("-perimeter-passes"));
+  options.roadSmoothing.straightAngle = args.real("-straight-angle");
+  options.cycles.maxCycleNodes = static_cast<int>(args.integer("-cycle-nodes"));
+  options.intersections.deadEndAngle = args.real("-dead-end-angle");
+  options.intersections.primaryDistance = args.real("-primary-close");
+  options.intersections.secondaryDistance = args.real("-secondary-close");
+  options.curves.passes = static_cast<int>(args.integer("-curve-passes"));
+  {
+    const std::vector<std::string> a = args.values("-curve-angles");
+    if (a.size() == 3) {
+      options.curves.angleThreeNodes = std::stod(a[0]);
+      options.curves.angleTwoNodes = std::stod(a[1]);
+      options.curves.angleOneNode = std::stod(a[2]);
+      if (!(options.curves.angleThreeNodes <= options.curves.angleTwoNodes &&
+            options.curves.angleTwoNodes <= options.curves.angleOneNode))
+        throw invalidOption("-curve-angles must be increasing (for 3, 2, 1 nodes), got " + a[0] + " " + a[1] + " " +
+                            a[2]);
+    }
+  }
+  options.outputSimplification = args.real("-simplify");
+  const bool debug = args.given("-debug-stages");
+  options.keepStageGraphs = debug;
+
+  // Check the outputs up front, before any work.
+  io::AtomicOutput out(output, overwrite);
+  std::unique_ptr<io::AtomicOutput> debugOut;
+  if (debug) {
+    const std::string dir = args.str("-debug-stages");
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec || !std::filesystem::is_directory(dir))
+      throw invalidOption("-debug-stages: cannot create folder '" + dir + "'");
+    debugOut = std::make_unique<io::AtomicOutput>((std::filesystem::path(dir) / "stages.gpkg").string(), overwrite);
+  }
+
+  io::GridInputPaths paths;
+  paths.landUse = landUse;
+  if (args.given("-density")) paths.density = args.str("-density");
+  if (args.given("-parcels")) paths.parcels = args.str("-parcels");
+  if (args.given("-parcel-table")) paths.parcelTable = args.str("-parcel-table");
+  if (args.given("-classes")) paths.classes = args.str("-classes");
+  std::vector<std::string> warnings;
+  const vectorize::VectorizeInput input = io::loadGridInput(paths, &warnings);
+  for (const std::string& w : warnings) ctx.warn(w);
+
+  vectorize::VectorizeResult result = vectorize::vectorize(input, options, ctx.progress);
+  for (const std::string& w : result.warnings) ctx.warn(w);
+
+  if (args.flag("-check")) {
+    const vectorize::RoadNetworkCheck check = vectorize::checkRoadNetwork(result.layers[0], result.layers[1]);
+    if (ctx.out) *ctx.out << "topology: " << check.describe() << "\n";
+    if (!check.ok()) throw internalError("the road topology check failed: " + check.describe());
+  }
+
+  io::VectorWriteOptions write;
+  write.format = io::vectorFormatFor(output, args.has("-of") ? args.str("-of") : "");
+  write.layerCreationOptions = args.values("-lco");
+  write.datasetCreationOptions = args.values("-dsco");
+  write.crsWkt = input.spec.crsWkt;
+  io::writeVectorDataset(out.tempPath(), result.layers, write);
+  if (debugOut) {
+    std::vector<Layer> layers;
+    int k = 0;
+    for (const auto& [stage, graph] : result.stageGraphs) {
+      std::ostringstream prefix;
+      prefix << std::setw(2) << std::setfill('0') << ++k << "_" << stage << "_";
+      std::string p = prefix.str();
+      for (char& c : p)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+      for (Layer& l : vectorize::rawGraphLayers(graph, input.spec, p)) layers.push_back(std::move(l));
+    }
+    io::VectorWriteOptions dw;
+    dw.format = "GPKG";
+    dw.crsWkt = input.spec.crsWkt;
+    io::writeVectorDataset(debugOut->tempPath(), layers, dw);
+    debugOut->commit();
+  }
+  out.commit();
+
+  if (args.flag("-timings") && ctx.out) {
+    std::ostream& s = *ctx.out;
+    s << "stage  name                          seconds  peak_MB    nodes    links  summary\n";
+    for (const vectorize::StageReport& r : result.stages)
+      s << std::left << std::setw(6) << r.id << " " << std::setw(29) << r.name << std::right << std::fixed
+        << std::setprecision(3) << std::setw(8) << r.seconds << " " << std::setw(8) << std::setprecision(1)
+        << (r.peakMemoryKb >= 0 ? r.peakMemoryKb / 1024.0 : -1.0) << " " << std::setw(8) << r.nodes << " "
+        << std::setw(8) << r.links << "  " << r.summary << "\n";
+  }
+}
+
+const bool registered = app::registerCommand(spec(), run);
+
+}  // namespace
+}  // namespace urbanvec

@@ -1,0 +1,195 @@
+// The evaluator (issue 2 §3): runs the road, block and parcel metrics over whichever layers both
+// cities have, leaving the others absent.
+#include "urbanvec/evaluate/evaluate.hpp"
+
+#include <cmath>
+#include <map>
+
+#include "urbanvec/core/error.hpp"
+#include "urbanvec/core/geos.hpp"
+#include "urbanvec/evaluate/polygon_metrics.hpp"
+#include "urbanvec/evaluate/road_metrics.hpp"
+
+namespace urbanvec::evaluate {
+
+namespace {
+
+void checkOptions(const EvaluationInput& input, const EvaluateOptions& options) {
+  if (!(input.cellSize > 0.0) || !std::isfinite(input.cellSize))
+    throw invalidOption("the cell size must be a positive number of metres, got " +
+                        std::to_string(input.cellSize));
+  if (!(options.sampleSpacingCells > 0.0))
+    throw invalidOption("the road sample spacing must be a positive number of cells, got " +
+                        std::to_string(options.sampleSpacingCells));
+  if (!(options.blockMatchIoU > 0.0 && options.blockMatchIoU <= 1.0))
+    throw invalidOption("the block match IoU must be in (0, 1], got " +
+                        std::to_string(options.blockMatchIoU));
+}
+
+double totalLengthKm(const std::vector<LineString>& lines) {
+  double metres = 0.0;
+  for (const LineString& l : lines) metres += length(l);
+  return metres / 1000.0;
+}
+
+RoadReport measureRoads(const EvaluationInput& input, const EvaluateOptions& options,
+                        const Progress& progress) {
+  RoadReport report;
+  std::vector<LineString> truthLines, resultLines;
+  if (input.truth.roads) {
+    std::size_t count = 0;
+    truthLines = roadCentrelines(*input.truth.roads, options, &count);
+    report.truthLines = count;
+    report.truthLengthKm = totalLengthKm(truthLines);
+    report.truthTurningPerKm = turningPerKm(truthLines);
+  }
+  if (input.result.roads) {
+    std::size_t count = 0;
+    resultLines = roadCentrelines(*input.result.roads, options, &count);
+    report.resultLines = count;
+    report.resultLengthKm = totalLengthKm(resultLines);
+    report.resultTurningPerKm = turningPerKm(resultLines);
+  }
+  if (report.truthTurningPerKm && report.resultTurningPerKm && *report.truthTurningPerKm > 0.0)
+    report.turningRatio = *report.resultTurningPerKm / *report.truthTurningPerKm;
+  if (!truthLines.empty() && !resultLines.empty()) {
+    const double spacing = options.sampleSpacingCells * input.cellSize;
+    const std::vector<double> there =
+        nearestDistances(samplePoints(truthLines, spacing), resultLines, subProgress(progress, 0.0, 0.5));
+    report.truthToResult = summariseDistances(there, input.cellSize);
+    const std::vector<double> back =
+        nearestDistances(samplePoints(resultLines, spacing), truthLines, subProgress(progress, 0.5, 1.0));
+    report.resultToTruth = summariseDistances(back, input.cellSize);
+  }
+  reportProgress(progress, 1.0, "road distances");
+  return report;
+}
+
+/// Land-use area of the parcels assigned to each block.
+std::vector<std::map<std::string, double>> landUseAreas(
+    const Layer& layer, const PolygonLayer& parcels,
+    const std::vector<std::optional<std::size_t>>& parcelBlock, std::size_t blockCount, int field) {
+  std::vector<std::map<std::string, double>> out(blockCount);
+  for (std::size_t p = 0; p < parcels.size(); ++p)
+    if (parcelBlock[p])
+      out[*parcelBlock[p]]
+         [landUseKey(layer.features[parcels.featureIndex(p)].values[static_cast<std::size_t>(field)])] +=
+          parcels.area(p);
+  return out;
+}
+
+std::vector<std::size_t> countPerBlock(const std::vector<std::optional<std::size_t>>& parcelBlock,
+                                       std::size_t blockCount) {
+  std::vector<std::size_t> counts(blockCount, 0);
+  for (const auto& b : parcelBlock)
+    if (b) ++counts[*b];
+  return counts;
+}
+
+double median(const std::vector<double>& values) {
+  return quantile(values, 0.5);
+}
+
+}  // namespace
+
+EvaluationReport evaluate(const EvaluationInput& input, const EvaluateOptions& options,
+                          const Progress& progress) {
+  checkOptions(input, options);
+  EvaluationReport report;
+  report.cellSize = input.cellSize;
+  reportProgress(progress, 0.0, "road distances");
+  report.roads = measureRoads(input, options, subProgress(progress, 0.0, 0.5));
+
+  geos::Context ctx;
+  std::optional<PolygonLayer> truthBlocks, resultBlocks, truthParcels, resultParcels;
+  if (input.truth.blocks) truthBlocks.emplace(ctx, *input.truth.blocks);
+  if (input.result.blocks) resultBlocks.emplace(ctx, *input.result.blocks);
+  if (input.truth.parcels) truthParcels.emplace(ctx, *input.truth.parcels);
+  if (input.result.parcels) resultParcels.emplace(ctx, *input.result.parcels);
+
+  BlockReport& blocks = report.blocks;
+  blocks.iouThreshold = options.blockMatchIoU;
+  if (truthBlocks) blocks.truthCount = truthBlocks->size();
+  if (resultBlocks) {
+    blocks.resultCount = resultBlocks->size();
+    blocks.resultInvalidCount = resultBlocks->invalidCount();
+  }
+  std::optional<BlockMatching> matching;
+  if (truthBlocks && resultBlocks) {
+    matching = matchBlocks(ctx, *truthBlocks, *resultBlocks, subProgress(progress, 0.5, 0.7));
+    std::size_t matched = 0;
+    double iouSum = 0.0;
+    for (std::size_t t = 0; t < truthBlocks->size(); ++t) {
+      iouSum += matching->bestIoU[t];
+      if (matching->bestIoU[t] >= options.blockMatchIoU) ++matched;
+    }
+    blocks.matchedCount = matched;
+    if (truthBlocks->size() > 0) {
+      blocks.matchedShare = static_cast<double>(matched) / static_cast<double>(truthBlocks->size());
+      blocks.meanBestIoU = iouSum / static_cast<double>(truthBlocks->size());
+    }
+  }
+  reportProgress(progress, 0.7, "parcels");
+
+  ParcelReport& parcels = report.parcels;
+  if (truthParcels) parcels.truthCount = truthParcels->size();
+  if (resultParcels) {
+    // Count and share over every polygonal feature, including those too broken to build or repair.
+    std::size_t polygonal = 0;
+    for (const Feature& f : input.result.parcels->features)
+      if (std::holds_alternative<Polygon>(f.geometry) || std::holds_alternative<MultiPolygon>(f.geometry))
+        ++polygonal;
+    parcels.resultCount = polygonal;
+    parcels.invalidCount = resultParcels->invalidCount();
+    if (polygonal > 0)
+      parcels.invalidShare =
+          static_cast<double>(resultParcels->invalidCount()) / static_cast<double>(polygonal);
+  }
+  if (resultParcels && resultBlocks) {
+    const auto resultParcelBlock = assignToBlocks(ctx, *resultParcels, *resultBlocks);
+    const Coverage coverage = parcelCoverage(ctx, *resultParcels, *resultBlocks, resultParcelBlock,
+                                             subProgress(progress, 0.7, 0.95));
+    if (coverage.blockArea > 0.0) {
+      parcels.gapShare = coverage.gapArea / coverage.blockArea;
+      parcels.overlapShare = coverage.overlapArea / coverage.blockArea;
+    }
+    if (matching && truthParcels) {
+      const auto truthParcelBlock = assignToBlocks(ctx, *truthParcels, *truthBlocks);
+      const auto truthCounts = countPerBlock(truthParcelBlock, truthBlocks->size());
+      const auto resultCounts = countPerBlock(resultParcelBlock, resultBlocks->size());
+      const int truthUse = input.truth.parcels->fieldIndex(options.truthLandUseField);
+      const int resultUse = input.result.parcels->fieldIndex(options.resultLandUseField);
+      const bool withUse = truthUse >= 0 && resultUse >= 0;
+      std::vector<std::map<std::string, double>> truthAreas, resultAreas;
+      if (withUse) {
+        truthAreas = landUseAreas(*input.truth.parcels, *truthParcels, truthParcelBlock, truthBlocks->size(),
+                                  truthUse);
+        resultAreas = landUseAreas(*input.result.parcels, *resultParcels, resultParcelBlock,
+                                   resultBlocks->size(), resultUse);
+      }
+      std::vector<double> ratios, errors;
+      for (std::size_t t = 0; t < truthBlocks->size(); ++t) {
+        if (matching->bestIoU[t] < options.blockMatchIoU || truthCounts[t] == 0) continue;
+        const std::size_t r = *matching->bestResult[t];
+        ratios.push_back(static_cast<double>(resultCounts[r]) / static_cast<double>(truthCounts[t]));
+        if (withUse) errors.push_back(landUseShareError(resultAreas[r], truthAreas[t]));
+      }
+      parcels.comparedBlocks = ratios.size();
+      if (!ratios.empty()) {
+        double sum = 0.0;
+        for (double v : ratios) sum += v;
+        parcels.countRatioMean = sum / static_cast<double>(ratios.size());
+        parcels.countRatioMedian = median(ratios);
+      }
+      if (!errors.empty()) {
+        double sum = 0.0;
+        for (double v : errors) sum += v;
+        parcels.landUseErrorMean = sum / static_cast<double>(errors.size());
+      }
+    }
+  }
+  reportProgress(progress, 1.0, "done");
+  return report;
+}
+
+}  // namespace urbanvec::evaluate

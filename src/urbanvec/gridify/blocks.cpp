@@ -1,0 +1,41 @@
+// Truth blocks (issue 2 §2 `truth.gpkg`: "blocks (faces of the noded road network, minus water)").
+#include "urbanvec/gridify/blocks.hpp"
+
+#include <cmath>
+
+#include "urbanvec/core/geos.hpp"
+#include "urbanvec/gridify/vector_ops.hpp"
+
+namespace urbanvec::gridify {
+
+std::vector<TruthBlock> roadBlocks(const MultiLineString& roads, const Extent& box,
+                                   const std::vector<MultiPolygon>& water, double minArea) {
+  geos::Context ctx;
+  MultiLineString lines = roads;
+  lines.push_back(boxPolygon(box).outer);
+  geos::GeomPtr all = ctx.multiLineString(lines);
+  geos::GeomPtr noded = ctx.own(GEOSUnaryUnion_r(ctx.handle(), all.get()), "node roads");
+  const GEOSGeometry* nodedRaw = noded.get();
+  geos::GeomPtr faces = ctx.own(GEOSPolygonize_r(ctx.handle(), &nodedRaw, 1), "polygonize roads");
+  geos::GeomPtr wet = water.empty() ? nullptr : unionPolygons(ctx, water);
+  geos::GeomPtr border = ctx.lineString(boxPolygon(box).outer);
+  const double tolerance = 1e-7 * std::fmax(1.0, std::fmax(box.maxX - box.minX, box.maxY - box.minY));
+
+  std::vector<TruthBlock> blocks;
+  for (const Polygon& face : ctx.toPolygons(faces.get())) {
+    geos::GeomPtr faceGeom = ctx.polygon(face);
+    double gap = 0.0;
+    GEOSDistance_r(ctx.handle(), faceGeom.get(), border.get(), &gap);
+    const bool external = gap <= tolerance;
+    MultiPolygon dry{face};
+    if (wet) {
+      geos::GeomPtr rest = ctx.own(GEOSDifference_r(ctx.handle(), faceGeom.get(), wet.get()), "cut water");
+      dry = ctx.toPolygons(rest.get());
+    }
+    for (Polygon& part : dry)
+      if (area(part) >= minArea) blocks.push_back({std::move(part), external});
+  }
+  return blocks;
+}
+
+}  // namespace urbanvec::gridify

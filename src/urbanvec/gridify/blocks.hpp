@@ -1,0 +1,22 @@
+// Truth blocks: faces of the noded road network, minus water (issue 2 §2 `truth.gpkg` "blocks").
+#pragma once
+
+#include <vector>
+
+#include "urbanvec/core/geometry.hpp"
+#include "urbanvec/gridify/city_data.hpp"
+
+namespace urbanvec::gridify {
+
+struct TruthBlock {
+  Polygon shape;
+  /// True when the face touches the extent's border (the network does not close it).
+  bool external = false;
+};
+
+/// The road centrelines (already clipped to the extent) and the extent's border are noded and
+/// polygonized; water is cut out; pieces smaller than minArea (m²) are dropped.
+std::vector<TruthBlock> roadBlocks(const MultiLineString& roads, const Extent& box,
+                                   const std::vector<MultiPolygon>& water, double minArea);
+
+}  // namespace urbanvec::gridify

@@ -1,0 +1,59 @@
+// `gridify`: real city vectors -> the gridded input the vectorizer consumes (issue 2 §2;
+// CONVENTIONS.md "Gridded input"; docs/gridify.md gives every rule and default).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "urbanvec/core/grid.hpp"
+#include "urbanvec/core/layer.hpp"
+#include "urbanvec/core/progress.hpp"
+#include "urbanvec/gridify/city_data.hpp"
+
+namespace urbanvec::gridify {
+
+struct GridifyOptions {
+  /// Cell edge length in metres (the source simulation uses 12 m cells).
+  double cellSize = 12.0;
+  /// Extent in the city's CRS; empty = cityExtent() snapped outwards to multiples of cellSize.
+  std::optional<Extent> extent;
+  /// Storeys assumed for a building whose level count is unknown.
+  double defaultLevels = 3.0;
+  /// Gross floor area per inhabitant in m² (population = footprint × levels / this).
+  double floorAreaPerPerson = 40.0;
+  /// Class of a building standing in no land-use area and carrying no class of its own.
+  LandUse defaultBuildingUse = LandUse::Residential;
+  /// Derived parcels reach at most this far (metres) from their building (momepy's tessellation limit).
+  double parcelReach = 50.0;
+  /// Dual carriageways and parallel roads whose rasterized centrelines come within this many cells of
+  /// each other are merged so that widths stay exact (see docs/gridify.md "Road widths").
+  int mergeGapCells = 1;
+};
+
+struct ParcelRecord {
+  std::int32_t id = 0;
+  LandUse use = LandUse::Unused;
+  double population = 0.0;
+  std::int64_t cells = 0;
+};
+
+struct GridifyResult {
+  GridSpec spec;  ///< frame of every raster (CRS = the city's)
+  Grid<std::uint8_t> landUse;
+  Grid<float> density;          ///< population per cell
+  Grid<std::int32_t> parcelIds; ///< 0 = none
+  std::vector<ParcelRecord> parcels;  ///< ids 1..n in order
+  /// Truth layers in the grid's CRS: roads, blocks, parcels, water, and the grid_info table (whose
+  /// crs field the caller fills with the CRS short name, which needs PROJ).
+  std::vector<Layer> truth;
+  // Figures for the report.
+  std::size_t roadsRasterized = 0;
+  std::size_t roadsMerged = 0;  ///< primary corner cells or secondary cells removed to keep widths exact
+};
+
+/// Builds the grid. Throws InvalidOption when cellSize <= 0 or the extent holds no cell, InvalidInput
+/// when the city has nothing to grid.
+GridifyResult gridify(const CityData& city, const GridifyOptions& options, const Progress& progress = {});
+
+}  // namespace urbanvec::gridify

@@ -1,0 +1,194 @@
+#include "urbanvec/io/grid_input.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <unordered_set>
+
+#include "urbanvec/core/error.hpp"
+#include "urbanvec/io/raster_io.hpp"
+
+namespace urbanvec::io {
+
+namespace {
+
+std::string trim(const std::string& s) {
+  const size_t a = s.find_first_not_of(" \t\r\n\"");
+  if (a == std::string::npos) return "";
+  const size_t b = s.find_last_not_of(" \t\r\n\"");
+  return s.substr(a, b - a + 1);
+}
+
+std::vector<std::string> splitCsv(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  std::string item;
+  while (std::getline(ss, item, ',')) out.push_back(trim(item));
+  if (!line.empty() && line.back() == ',') out.emplace_back();
+  return out;
+}
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+std::string numberText(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+bool parseNumber(const std::string& text, double& value) {
+  if (text.empty()) return false;
+  char* end = nullptr;
+  value = std::strtod(text.c_str(), &end);
+  return end && *end == '\0' && std::isfinite(value);
+}
+
+}  // namespace
+
+std::vector<std::pair<double, LandUse>> readClassTable(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) throw invalidInput("-classes table '" + path + "' cannot be opened");
+  std::vector<std::pair<double, LandUse>> table;
+  std::string line;
+  int lineNo = 0;
+  while (std::getline(f, line)) {
+    ++lineNo;
+    const std::string t = trim(line);
+    if (t.empty() || t[0] == '#') continue;
+    const std::vector<std::string> cols = splitCsv(t);
+    double value = 0;
+    if (cols.size() < 2 || !parseNumber(cols[0], value)) {
+      if (table.empty() && lineNo == 1 && cols.size() >= 2) continue;  // header
+      throw invalidInput("-classes table '" + path + "' line " + std::to_string(lineNo) +
+                         " is not 'value,class_name': '" + t + "'");
+    }
+    const std::optional<LandUse> use = parseLandUse(cols[1]);
+    if (!use)
+      throw invalidInput("-classes table '" + path + "' line " + std::to_string(lineNo) + " names unknown class '" +
+                         cols[1] + "' (expected one of unused, water, secondary_road, primary_road, residential, "
+                         "commercial, industrial, park, reserved)");
+    table.emplace_back(value, *use);
+  }
+  if (table.empty()) throw invalidInput("-classes table '" + path + "' maps no value");
+  return table;
+}
+
+vectorize::VectorizeInput loadGridInput(const GridInputPaths& paths, std::vector<std::string>* warnings) {
+  vectorize::VectorizeInput in;
+  RasterInfo info;
+  const std::string luRole = "land-use raster";
+  const Grid<double> raw = readRasterBand<double>(paths.landUse, luRole, &info);
+  in.spec = info.spec;
+  if (info.spec.crsWkt.empty() && warnings)
+    warnings->push_back("land-use raster '" + paths.landUse + "' has no CRS: the output layers have none");
+  in.landUse = Grid<std::uint8_t>(raw.width, raw.height, 0);
+  std::map<double, LandUse> classes;
+  if (!paths.classes.empty())
+    for (const auto& [v, u] : readClassTable(paths.classes)) classes[v] = u;
+  for (size_t i = 0; i < raw.cells.size(); ++i) {
+    const double v = raw.cells[i];
+    if (info.nodata && (v == *info.nodata || (std::isnan(v) && std::isnan(*info.nodata)))) continue;  // unused
+    auto where = [&]() {
+      return " at column " + std::to_string(i % raw.width) + ", row " + std::to_string(i / raw.width);
+    };
+    if (!classes.empty()) {
+      auto it = classes.find(v);
+      if (it == classes.end())
+        throw invalidInput(luRole + " '" + paths.landUse + "' holds value " + numberText(v) + where() +
+                           " which -classes table '" + paths.classes + "' does not map (add a line '" +
+                           numberText(v) + ",<class name>')");
+      in.landUse.cells[i] = static_cast<std::uint8_t>(it->second);
+      continue;
+    }
+    if (std::isnan(v) || v != std::floor(v) || v < 0 || (v > 8 && v != kLandUseNodata))
+      throw invalidInput(luRole + " '" + paths.landUse + "' (" + info.dataType + ") holds value " + numberText(v) +
+                         where() + ", which is not a land-use class code (0..8, 255 = nodata); map its values to "
+                         "classes with -classes <csv>");
+    in.landUse.cells[i] = static_cast<std::uint8_t>(landUseFromCode(static_cast<int>(v)));
+  }
+
+  if (!paths.density.empty()) {
+    RasterInfo di;
+    in.density = readRasterBand<float>(paths.density, "density raster", &di);
+    requireSameGrid(info.spec, paths.landUse, di.spec, paths.density);
+    for (float& d : in.density.cells)
+      if ((di.nodata && d == static_cast<float>(*di.nodata)) || !std::isfinite(d)) d = 0;
+  }
+  if (!paths.parcelTable.empty() && paths.parcels.empty())
+    throw invalidInput("-parcel-table '" + paths.parcelTable + "' needs the parcel raster (-parcels) that holds "
+                       "the parcels' cells");
+  if (!paths.parcels.empty()) {
+    RasterInfo pi;
+    const Grid<double> ids = readRasterBand<double>(paths.parcels, "parcels raster", &pi);
+    requireSameGrid(info.spec, paths.landUse, pi.spec, paths.parcels);
+    in.parcelIds = Grid<std::int32_t>(ids.width, ids.height, 0);
+    for (size_t i = 0; i < ids.cells.size(); ++i) {
+      const double v = ids.cells[i];
+      if (pi.nodata && v == *pi.nodata) continue;
+      const std::string where =
+          " at column " + std::to_string(i % ids.width) + ", row " + std::to_string(i / ids.width);
+      if (std::isnan(v) || v != std::floor(v) || v > 2147483647.0)
+        throw invalidInput("parcels raster '" + paths.parcels + "' holds value " + numberText(v) + where +
+                           ", which is not an integer parcel id");
+      if (v < 0)
+        throw invalidInput("parcels raster '" + paths.parcels + "' holds negative parcel id " + numberText(v) + where +
+                           " (ids must be >= 0, 0 = no parcel)");
+      in.parcelIds.cells[i] = static_cast<std::int32_t>(v);
+    }
+  }
+  if (!paths.parcelTable.empty()) {
+    std::ifstream f(paths.parcelTable);
+    if (!f) throw invalidInput("parcel table '" + paths.parcelTable + "' cannot be opened");
+    std::string line;
+    if (!std::getline(f, line)) throw invalidInput("parcel table '" + paths.parcelTable + "' is empty");
+    const std::vector<std::string> header = splitCsv(line);
+    auto column = [&](const std::string& name) {
+      for (size_t k = 0; k < header.size(); ++k)
+        if (lower(header[k]) == name) return static_cast<int>(k);
+      throw invalidInput("parcel table '" + paths.parcelTable + "' has no column '" + name +
+                         "' (expected parcel_id,land_use,population,cells)");
+    };
+    const int cId = column("parcel_id"), cUse = column("land_use"), cPop = column("population"),
+              cCells = column("cells");
+    std::unordered_set<std::int32_t> inRaster(in.parcelIds.cells.begin(), in.parcelIds.cells.end());
+    std::unordered_set<std::int32_t> seen;
+    int lineNo = 1;
+    while (std::getline(f, line)) {
+      ++lineNo;
+      if (trim(line).empty()) continue;
+      const std::vector<std::string> cols = splitCsv(line);
+      const std::string at = "parcel table '" + paths.parcelTable + "' line " + std::to_string(lineNo);
+      const int need = std::max({cId, cUse, cPop, cCells});
+      if (static_cast<int>(cols.size()) <= need) throw invalidInput(at + " has too few columns");
+      double id = 0, pop = 0, cells = 0;
+      if (!parseNumber(cols[cId], id) || id != std::floor(id) || id <= 0 || id > 2147483647.0)
+        throw invalidInput(at + ": parcel_id '" + cols[cId] + "' is not a positive integer");
+      if (!parseNumber(cols[cPop], pop) || pop < 0)
+        throw invalidInput(at + ": population '" + cols[cPop] + "' is not a number >= 0");
+      if (!parseNumber(cols[cCells], cells) || cells < 0)
+        throw invalidInput(at + ": cells '" + cols[cCells] + "' is not a number >= 0");
+      const std::optional<LandUse> use = parseLandUse(cols[cUse]);
+      if (!use) throw invalidInput(at + ": land_use '" + cols[cUse] + "' is not a class name");
+      const auto pid = static_cast<std::int32_t>(id);
+      if (!inRaster.count(pid))
+        throw invalidInput(at + " names parcel id " + std::to_string(pid) + ", which is not in the parcels raster '" +
+                           paths.parcels + "'");
+      if (!seen.insert(pid).second) throw invalidInput(at + " repeats parcel id " + std::to_string(pid));
+      in.parcelTable.push_back({pid, *use, pop, static_cast<std::int64_t>(cells)});
+    }
+    std::size_t missing = 0;
+    for (std::int32_t id : inRaster) missing += id > 0 && !seen.count(id);
+    if (missing > 0 && warnings)
+      warnings->push_back(std::to_string(missing) + " parcel ids of parcels raster '" + paths.parcels +
+                          "' are not in parcel table '" + paths.parcelTable +
+                          "'; their use and population are derived from the rasters");
+  }
+  return in;
+}
+
+}  // namespace urbanvec::io

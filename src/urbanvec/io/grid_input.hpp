@@ -1,0 +1,28 @@
+// Loading the gridded input of `vectorize` (CONVENTIONS.md "Gridded input"): land-use, density and
+// parcel rasters plus the parcel table and an optional value-to-class table, checked to share one grid,
+// into the plain VectorizeInput.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "urbanvec/vectorize/vectorize_input.hpp"
+
+namespace urbanvec::io {
+
+struct GridInputPaths {
+  std::string landUse;      ///< required
+  std::string density;      ///< optional ("" = none)
+  std::string parcels;      ///< optional
+  std::string parcelTable;  ///< optional; needs `parcels`
+  std::string classes;      ///< optional `value,class_name` CSV mapping raster values to classes
+};
+
+/// Reads and checks everything; throws urbanvec::Error naming the file and what is wrong. Non-fatal
+/// findings are appended to `warnings`.
+vectorize::VectorizeInput loadGridInput(const GridInputPaths& paths, std::vector<std::string>* warnings = nullptr);
+
+/// Parses a `value,class_name` table (header optional, '#' comments allowed) into value -> class.
+std::vector<std::pair<double, LandUse>> readClassTable(const std::string& path);
+
+}  // namespace urbanvec::io

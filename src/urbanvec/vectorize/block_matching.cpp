@@ -1,0 +1,138 @@
+// Stage D5, matching simulated blocks to vector blocks (shared/specs/sexton-vectorizer.md §3 D5,
+// §11.4 check 27).
+#include "urbanvec/vectorize/block_matching.hpp"
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <string>
+
+#include "urbanvec/core/error.hpp"
+#include "urbanvec/core/geos.hpp"
+#include "urbanvec/vectorize/road_geometry.hpp"
+#include "urbanvec/vectorize/water_split.hpp"
+
+namespace urbanvec::vectorize {
+
+BlockMatching matchSimulatedBlocks(const std::vector<Polygon>& vectorBlocks, const SimulatedCity& city,
+                                   const Grid<int>& blockOfCell, const std::vector<int>& preMatched,
+                                   const Progress& progress) {
+  if (!preMatched.empty() && preMatched.size() != city.blocks.size())
+    throw internalError("matchSimulatedBlocks: preMatched needs one entry per simulated block.");
+  geos::Context ctx;
+  std::vector<geos::GeomPtr> geoms;
+  std::vector<const GEOSGeometry*> raw;
+  std::vector<geos::GeomPtr> centroids;
+  std::vector<const GEOSGeometry*> centroidRaw;
+  for (const Polygon& p : vectorBlocks) {
+    geoms.push_back(ctx.polygon(p));
+    raw.push_back(geoms.back().get());
+    centroids.push_back(ctx.own(GEOSGetCentroid_r(ctx.handle(), geoms.back().get()), "centroid"));
+    centroidRaw.push_back(centroids.back().get());
+  }
+  GeometryIndex index(ctx, raw);
+  // Nearest-centroid search for the failsafe.
+  GEOSSTRtree* centroidTree = GEOSSTRtree_create_r(ctx.handle(), 10);
+  struct TreeGuard {
+    GEOSContextHandle_t h;
+    GEOSSTRtree* t;
+    ~TreeGuard() { GEOSSTRtree_destroy_r(h, t); }
+  } treeGuard{ctx.handle(), centroidTree};
+  std::map<const GEOSGeometry*, int> centroidIndex;
+  for (size_t k = 0; k < centroids.size(); ++k) {
+    GEOSSTRtree_insert_r(ctx.handle(), centroidTree, centroidRaw[k],
+                         const_cast<GEOSGeometry*>(centroidRaw[k]));
+    centroidIndex.emplace(centroidRaw[k], static_cast<int>(k));
+  }
+  std::vector<const GEOSPreparedGeometry*> prepared(geoms.size(), nullptr);
+  struct PreparedSet {
+    GEOSContextHandle_t h;
+    std::vector<const GEOSPreparedGeometry*>& list;
+    ~PreparedSet() {
+      for (const GEOSPreparedGeometry* p : list)
+        if (p) GEOSPreparedGeom_destroy_r(h, p);
+    }
+  } guard{ctx.handle(), prepared};
+
+  auto locate = [&](const Vec2& p) {
+    geos::GeomPtr pt = ctx.point(p);
+    for (int v : index.query(pt.get())) {
+      if (!prepared[v]) prepared[v] = GEOSPrepare_r(ctx.handle(), geoms[v].get());
+      if (GEOSPreparedContains_r(ctx.handle(), prepared[v], pt.get()) == 1) return v;
+    }
+    return -1;
+  };
+  const int h = city.grid.height;
+  auto ownCell = [&](const Vec2& p, int b) {
+    const GridCell c = cellAt(p, h);
+    return blockOfCell.inside(c.col, c.row) && blockOfCell.at(c.col, c.row) == b;
+  };
+  std::map<int, size_t> parcelById;
+  for (size_t i = 0; i < city.parcels.size(); ++i) parcelById.emplace(city.parcels[i].id, i);
+
+  BlockMatching out;
+  out.vectorBlockOfSim.assign(city.blocks.size(), -1);
+  out.rule.assign(city.blocks.size(), MatchRule::None);
+  ProgressTicker ticker(progress, "block matching", city.blocks.size());
+  for (size_t bi = 0; bi < city.blocks.size(); ++bi) {
+    ticker.tick();
+    const int b = static_cast<int>(bi);
+    const SimulatedBlock& block = city.blocks[bi];
+    if (!preMatched.empty() && preMatched[bi] >= 0) {
+      out.vectorBlockOfSim[bi] = preMatched[bi];
+      out.rule[bi] = MatchRule::WaterSplit;
+      ++out.matched;
+      continue;
+    }
+    if (block.cells.empty() || vectorBlocks.empty()) continue;
+    const Vec2 c = block.centre;
+    int v = -1;
+    MatchRule rule = MatchRule::None;
+    if (ownCell(c, b)) {
+      v = locate(c);
+      rule = MatchRule::Centre;
+    }
+    if (v < 0) {
+      std::vector<std::pair<double, size_t>> parcels;
+      for (int id : block.parcelIds) {
+        auto it = parcelById.find(id);
+        if (it != parcelById.end() && !city.parcels[it->second].cells.empty())
+          parcels.emplace_back(distance(city.parcels[it->second].centre, c), it->second);
+      }
+      std::sort(parcels.begin(), parcels.end());
+      for (const auto& [d, pi] : parcels) {
+        const Vec2 pc = city.parcels[pi].centre;
+        if (!ownCell(pc, b)) continue;
+        v = locate(pc);
+        if (v >= 0) break;
+      }
+      rule = MatchRule::ParcelCentre;
+    }
+    if (v < 0) {
+      std::vector<std::pair<double, size_t>> cells;
+      for (size_t k = 0; k < block.cells.size(); ++k)
+        cells.emplace_back(distance(cellCentre(block.cells[k], h), c), k);
+      std::sort(cells.begin(), cells.end());
+      for (const auto& [d, k] : cells) {
+        v = locate(cellCentre(block.cells[k], h));
+        if (v >= 0) break;
+      }
+      rule = MatchRule::CellCentre;
+    }
+    if (v < 0) {
+      geos::GeomPtr pt = ctx.point(c);
+      const GEOSGeometry* nearest = GEOSSTRtree_nearest_r(ctx.handle(), centroidTree, pt.get());
+      auto it = centroidIndex.find(nearest);
+      if (it != centroidIndex.end()) v = it->second;
+      rule = MatchRule::Failsafe;
+      ++out.failsafeUses;
+    }
+    out.vectorBlockOfSim[bi] = v;
+    out.rule[bi] = rule;
+    ++out.matched;
+  }
+  ticker.finish();
+  return out;
+}
+
+}  // namespace urbanvec::vectorize

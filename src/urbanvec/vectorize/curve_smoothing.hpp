@@ -1,0 +1,34 @@
+// Stage B6 — curve smoothing (spec §3 B6; thesis §3.2.6, paper §3.2.2): nodes are inserted where the
+// road bends sharply (3/2/1 per side below 90/135/160 degrees) so eight averaging passes smooth the
+// staircase without flattening real curves.
+#pragma once
+
+#include "urbanvec/core/progress.hpp"
+#include "urbanvec/vectorize/road_graph.hpp"
+
+namespace urbanvec::vectorize {
+
+struct CurveSmoothingOptions {
+  /// Averaging passes after the insertion.
+  int passes = 8;
+  /// Interior angle below which 3 nodes are added on each side of the bend, in degrees.
+  double angleThreeNodes = 90.0;
+  /// Interior angle below which 2 nodes are added on each side, in degrees.
+  double angleTwoNodes = 135.0;
+  /// Interior angle below which 1 node is added on each side, in degrees.
+  double angleOneNode = 160.0;
+};
+
+struct CurveSmoothingStats {
+  std::size_t bends = 0;  ///< nodes whose angle triggered an insertion
+  std::size_t nodesInserted = 0;
+  int passes = 0;  ///< averaging passes run
+};
+
+/// Nodes to add on each side of a bend with interior angle `degrees` (180 = straight).
+int curveInsertionCount(double degrees, const CurveSmoothingOptions& options);
+
+CurveSmoothingStats smoothCurves(RoadGraph& graph, const CurveSmoothingOptions& options,
+                                 const Progress& progress = {});
+
+}  // namespace urbanvec::vectorize

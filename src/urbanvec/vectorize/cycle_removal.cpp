@@ -1,0 +1,178 @@
+// Stage B4 (spec §3 B4) with the [INFERENCE] face-based cycle definition of Q10 (unrestricted mode).
+// [INFERENCE] A qualifying face whose cycle has fewer than two chain ends (an isolated ring or a loop
+// hanging from one node) has no "segment between intersections"; its longest link is removed, which
+// opens the cycle without dropping road.
+#include "urbanvec/vectorize/cycle_removal.hpp"
+
+#include <algorithm>
+#include <unordered_map>
+
+#include "urbanvec/vectorize/road_checks.hpp"
+
+namespace urbanvec::vectorize {
+
+namespace {
+
+struct RoadAdjacency {
+  std::vector<std::int32_t> offsets;  ///< per node, into `to`
+  std::vector<std::int32_t> to;       ///< road neighbours, clockwise (graph must be sorted)
+};
+
+RoadAdjacency roadAdjacency(const RoadGraph& g) {
+  RoadAdjacency a;
+  a.offsets.assign(g.nodes.size() + 1, 0);
+  for (size_t i = 0; i < g.nodes.size(); ++i) {
+    a.offsets[i + 1] = a.offsets[i];
+    const RoadNode& n = g.nodes[i];
+    if (!n.alive || n.type == NodeType::Perimeter) continue;
+    for (int j : n.links)
+      if (g.nodes[j].type != NodeType::Perimeter) {
+        a.to.push_back(j);
+        ++a.offsets[i + 1];
+      }
+  }
+  return a;
+}
+
+/// Walks all faces; returns, per bounded face, its cycle as a node sequence.
+std::vector<std::vector<int>> walkFaces(const RoadGraph& g, const RoadAdjacency& a, double maxFaceArea) {
+  const size_t halfEdges = a.to.size();
+  std::vector<std::int32_t> from(halfEdges);
+  for (size_t i = 0; i + 1 < a.offsets.size(); ++i)
+    for (int k = a.offsets[i]; k < a.offsets[i + 1]; ++k) from[k] = static_cast<int>(i);
+  auto halfEdge = [&](int u, int v) {
+    for (int k = a.offsets[u]; k < a.offsets[u + 1]; ++k)
+      if (a.to[k] == v) return k;
+    return -1;
+  };
+  std::vector<char> done(halfEdges, 0);
+  std::vector<std::vector<int>> faces;
+  std::vector<int> walk;
+  for (size_t start = 0; start < halfEdges; ++start) {
+    if (done[start]) continue;
+    walk.clear();
+    int e = static_cast<int>(start);
+    while (!done[e]) {
+      done[e] = 1;
+      walk.push_back(e);
+      const int u = from[e], v = a.to[e];
+      // Leftmost turn at v: the link following v->u clockwise keeps the face on the left.
+      const int back = halfEdge(v, u);
+      const int deg = a.offsets[v + 1] - a.offsets[v];
+      e = a.offsets[v] + (back - a.offsets[v] + 1) % deg;
+    }
+    double twiceArea = 0;
+    for (int k : walk) {
+      const Vec2& p = g.nodes[from[k]].p;
+      const Vec2& q = g.nodes[a.to[k]].p;
+      twiceArea += p.x * q.y - q.x * p.y;
+    }
+    // Outer faces of components are clockwise (negative area). A loop that smoothing has collapsed onto
+    // a line encloses (almost) nothing but is still a cycle, so faces of about zero area count too;
+    // the walk around a tree has an empty cycle and is dropped below.
+    if (twiceArea < -1e-9 || twiceArea > 2 * maxFaceArea) continue;
+    // Drop edges walked both ways (dangling branches): what is left is the cycle, in walk order.
+    std::unordered_map<std::int64_t, int> count;
+    auto key = [](int x, int y) {
+      return (static_cast<std::int64_t>(std::min(x, y)) << 32) | std::max(x, y);
+    };
+    for (int k : walk) ++count[key(from[k], a.to[k])];
+    std::vector<int> cycle;
+    for (int k : walk)
+      if (count[key(from[k], a.to[k])] == 1) cycle.push_back(from[k]);
+    if (cycle.size() >= 3) faces.push_back(std::move(cycle));
+  }
+  return faces;
+}
+
+}  // namespace
+
+std::vector<std::vector<int>> boundedRoadFaces(const RoadGraph& graph) {
+  return walkFaces(graph, roadAdjacency(graph), 1e300);
+}
+
+CycleRemovalStats removeShortCycles(RoadGraph& graph, const CycleRemovalOptions& options,
+                                    const Progress& progress) {
+  CycleRemovalStats stats;
+  // The face walk needs a planar embedding; smoothing can make links cross (tiny twisted loops).
+  if (options.planarizeFirst) stats.crossingsNoded = nodeCrossingsAndContractTinyLinks(graph);
+  graph.sortLinksClockwise();
+  for (int round = 0; round < options.maxRounds; ++round) {
+    const RoadAdjacency adj = roadAdjacency(graph);
+    auto roadDegree = [&](int i) { return adj.offsets[i + 1] - adj.offsets[i]; };
+    std::vector<std::vector<int>> faces = walkFaces(graph, adj, options.maxFaceArea);
+    // Distinct-node count per face; smallest faces first (deterministic).
+    std::vector<std::pair<int, int>> order;
+    for (size_t f = 0; f < faces.size(); ++f) {
+      std::vector<int> nodes = faces[f];
+      std::sort(nodes.begin(), nodes.end());
+      const int distinct = static_cast<int>(std::unique(nodes.begin(), nodes.end()) - nodes.begin());
+      if (distinct <= options.maxCycleNodes) order.emplace_back(distinct, static_cast<int>(f));
+    }
+    if (order.empty()) break;
+    std::sort(order.begin(), order.end());
+    ++stats.rounds;
+    std::size_t removedThisRound = 0;
+    for (const auto& [distinct, f] : order) {
+      const std::vector<int>& cycle = faces[f];
+      const size_t m = cycle.size();
+      // Still intact? An earlier removal this round may have opened it already.
+      bool intact = true;
+      for (size_t k = 0; k < m && intact; ++k)
+        intact = graph.nodes[cycle[k]].alive && graph.linked(cycle[k], cycle[(k + 1) % m]);
+      if (!intact) continue;
+      // Chain ends: cycle nodes whose road degree is not 2 (degrees taken from this round's start).
+      std::vector<size_t> ends;
+      for (size_t k = 0; k < m; ++k)
+        if (roadDegree(cycle[k]) != 2 || graph.degree(cycle[k]) != 2) ends.push_back(k);
+      if (ends.size() < 2) {
+        size_t longest = 0;
+        for (size_t k = 1; k < m; ++k)
+          if (distance(graph.nodes[cycle[k]].p, graph.nodes[cycle[(k + 1) % m]].p) >
+              distance(graph.nodes[cycle[longest]].p, graph.nodes[cycle[(longest + 1) % m]].p))
+            longest = k;
+        graph.unlink(cycle[longest], cycle[(longest + 1) % m]);
+        ++removedThisRound;
+        continue;
+      }
+      // Chains between consecutive ends; pick (secondary first, then shortest).
+      size_t bestStart = 0, bestLen = 0;
+      double bestLength = 0;
+      bool bestPrimary = true, found = false;
+      for (size_t e = 0; e < ends.size(); ++e) {
+        const size_t s = ends[e], t = ends[(e + 1) % ends.size()];
+        const size_t len = (t + m - s) % m == 0 ? m : (t + m - s) % m;
+        double chainLength = 0;
+        bool primary = false;
+        for (size_t k = 0; k < len; ++k) {
+          const int u = cycle[(s + k) % m], v = cycle[(s + k + 1) % m];
+          chainLength += distance(graph.nodes[u].p, graph.nodes[v].p);
+          primary |= graph.nodes[u].type == NodeType::Primary && graph.nodes[v].type == NodeType::Primary;
+        }
+        if (!found || primary < bestPrimary || (primary == bestPrimary && chainLength < bestLength)) {
+          found = true;
+          bestPrimary = primary;
+          bestLength = chainLength;
+          bestStart = s;
+          bestLen = len;
+        }
+      }
+      if (bestLen == 1) {
+        graph.unlink(cycle[bestStart], cycle[(bestStart + 1) % m]);
+      } else {
+        for (size_t k = 1; k < bestLen; ++k) graph.removeNode(cycle[(bestStart + k) % m]);
+      }
+      ++removedThisRound;
+    }
+    stats.segmentsRemoved += removedThisRound;
+    reportProgress(progress, std::min(0.95, 0.2 * (round + 1)), "cycle removal");
+    if (removedThisRound == 0) break;
+  }
+  graph.compact();
+  updateIntersectionFlags(graph);
+  graph.sortLinksClockwise();
+  reportProgress(progress, 1.0, "cycle removal");
+  return stats;
+}
+
+}  // namespace urbanvec::vectorize

@@ -1,0 +1,161 @@
+// Stages D3 + D4, external blocks (shared/specs/sexton-vectorizer.md §3 D3, D4, §11.4 check 26).
+#include "urbanvec/vectorize/external_blocks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "urbanvec/core/error.hpp"
+#include "urbanvec/core/geos.hpp"
+#include "urbanvec/vectorize/block_outline.hpp"
+#include "urbanvec/vectorize/road_geometry.hpp"
+#include "urbanvec/vectorize/water_split.hpp"
+
+namespace urbanvec::vectorize {
+
+namespace {
+
+/// Q8 smoothing of a boundary line: resample to `spacing`, then average every inner point with its
+/// two neighbours `passes` times; the end points (where the line meets the road) stay put.
+LineString smoothBoundaryLine(const LineString& line, int passes, double spacing) {
+  if (passes <= 0 || line.size() < 3) return line;
+  LineString dense;
+  for (size_t i = 0; i + 1 < line.size(); ++i) {
+    const int steps =
+        std::max(1, static_cast<int>(std::ceil(distance(line[i], line[i + 1]) / spacing - 1e-9)));
+    for (int k = 0; k < steps; ++k) dense.push_back(line[i] + (line[i + 1] - line[i]) * (double(k) / steps));
+  }
+  dense.push_back(line.back());
+  for (int pass = 0; pass < passes; ++pass) {
+    LineString next = dense;
+    for (size_t i = 1; i + 1 < dense.size(); ++i) next[i] = (dense[i - 1] + dense[i] + dense[i + 1]) / 3.0;
+    dense = std::move(next);
+  }
+  return dense;
+}
+
+}  // namespace
+
+bool boundaryLineTrappedInside(const std::vector<bool>& inside, double insideNodeShare) {
+  if (inside.empty() || !inside.front() || !inside.back()) return false;
+  size_t count = 0;
+  for (bool in : inside) count += in ? 1 : 0;
+  return static_cast<double>(count) > insideNodeShare * static_cast<double>(inside.size());
+}
+
+ExternalBlocks buildExternalBlocks(const RoadNetwork& network, const MultiPolygon& perimeter,
+                                   const SimulatedCity& city, const Grid<int>& blockOfCell,
+                                   const ExternalBlocksOptions& options, const Progress& progress) {
+  if (!(options.insideNodeShare >= 0.0 && options.insideNodeShare < 1.0))
+    throw invalidOption("The inside node share must be in [0, 1), got " +
+                        std::to_string(options.insideNodeShare) + ".");
+  if (!(options.externalCellShare >= 0.0 && options.externalCellShare < 1.0))
+    throw invalidOption("The external cell share must be in [0, 1), got " +
+                        std::to_string(options.externalCellShare) + ".");
+  if (options.boundarySmoothingPasses < 0 || !(options.boundaryResampleSpacing > 0.0))
+    throw invalidOption("Boundary smoothing needs 0 or more passes and a positive spacing, got " +
+                        std::to_string(options.boundarySmoothingPasses) + " passes and " +
+                        std::to_string(options.boundaryResampleSpacing) + " cells.");
+  geos::Context ctx;
+  const double grid = options.precisionGrid;
+  ExternalBlocks out;
+  const Progress lines = subProgress(progress, 0.0, 0.6);
+  ProgressTicker ticker(lines, "external blocks", network.segments.size());
+
+  geos::GeomPtr city_ = ctx.multiPolygon(perimeter);
+  const bool hasPerimeter = !perimeter.empty();
+  geos::GeomPtr ring = ctx.own(GEOSBoundary_r(ctx.handle(), city_.get()), "boundary");
+  const GEOSPreparedGeometry* prepared = GEOSPrepare_r(ctx.handle(), city_.get());
+  if (!prepared) throw internalError("GEOS failed to prepare the road perimeter: " + ctx.lastError());
+  struct PreparedGuard {
+    GEOSContextHandle_t h;
+    const GEOSPreparedGeometry* p;
+    ~PreparedGuard() { GEOSPreparedGeom_destroy_r(h, p); }
+  } guard{ctx.handle(), prepared};
+
+  auto insidePerimeter = [&](const Vec2& p) {
+    if (!hasPerimeter) return false;
+    geos::GeomPtr pt = ctx.point(p);
+    if (GEOSPreparedContains_r(ctx.handle(), prepared, pt.get()) != 1) return false;
+    double d = 0.0;
+    GEOSDistance_r(ctx.handle(), ring.get(), pt.get(), &d);
+    return d > options.insideTolerance;
+  };
+
+  std::vector<int> perimeterLinesAtNode(network.nodes.size(), 0);
+  for (const NetworkSegment& seg : network.segments)
+    if (seg.roadClass == RoadClass::Perimeter) {
+      if (seg.fromNode >= 0 && static_cast<size_t>(seg.fromNode) < network.nodes.size())
+        ++perimeterLinesAtNode[seg.fromNode];
+      if (seg.toNode >= 0 && static_cast<size_t>(seg.toNode) < network.nodes.size())
+        ++perimeterLinesAtNode[seg.toNode];
+    }
+
+  std::vector<geos::GeomPtr> linework;
+  if (hasPerimeter) linework.push_back(ctx.own(GEOSGeom_clone_r(ctx.handle(), ring.get()), "clone"));
+  for (const NetworkSegment& seg : network.segments) {
+    ticker.tick();
+    if (seg.roadClass != RoadClass::Perimeter || seg.points.size() < 2) continue;
+    ++out.boundaryLines;
+    std::vector<bool> inside;
+    for (const Vec2& p : seg.points) inside.push_back(insidePerimeter(p));
+    if (boundaryLineTrappedInside(inside, options.insideNodeShare)) {
+      ++out.deletedLines;
+      continue;
+    }
+    geos::GeomPtr line = ctx.lineString(
+        smoothBoundaryLine(seg.points, options.boundarySmoothingPasses, options.boundaryResampleSpacing));
+    if (hasPerimeter)
+      line = ctx.own(GEOSDifferencePrec_r(ctx.handle(), line.get(), city_.get(), grid), "difference");
+    else
+      line = ctx.own(GEOSGeom_setPrecision_r(ctx.handle(), line.get(), grid, 0), "set precision");
+    linework.push_back(std::move(line));
+    // A line end left in the open is reconnected to the nearest point of the road perimeter (D4 step 1),
+    // unless another boundary line continues from it.
+    if (!hasPerimeter) continue;
+    const std::pair<int, Vec2> ends[2] = {{seg.fromNode, seg.points.front()},
+                                          {seg.toNode, seg.points.back()}};
+    for (size_t e = 0; e < 2; ++e) {
+      const auto& [node, p] = ends[e];
+      const bool continued =
+          node >= 0 && static_cast<size_t>(node) < network.nodes.size() && perimeterLinesAtNode[node] > 1;
+      if (continued || inside[e == 0 ? 0 : inside.size() - 1]) continue;
+      geos::GeomPtr pt = ctx.point(p);
+      GEOSCoordSequence* nearest = GEOSNearestPoints_r(ctx.handle(), ring.get(), pt.get());
+      if (!nearest) continue;
+      Vec2 q;
+      GEOSCoordSeq_getXY_r(ctx.handle(), nearest, 0, &q.x, &q.y);
+      GEOSCoordSeq_destroy_r(ctx.handle(), nearest);
+      if (distance(p, q) > options.insideTolerance) linework.push_back(ctx.lineString({p, q}));
+    }
+  }
+
+  if (linework.empty()) {
+    reportProgress(progress, 1.0, "external blocks");
+    return out;
+  }
+  geos::GeomPtr noded = unionOnGrid(ctx, std::move(linework), grid);
+  const GEOSGeometry* nodedRaw = noded.get();
+  geos::GeomPtr faces = ctx.own(GEOSPolygonize_r(ctx.handle(), &nodedRaw, 1), "polygonize");
+  reportProgress(progress, 0.7, "external blocks");
+  for (Polygon& face : ctx.toPolygons(faces.get())) {
+    geos::GeomPtr g = ctx.polygon(face);
+    geos::GeomPtr probe = ctx.own(GEOSPointOnSurface_r(ctx.handle(), g.get()), "point on surface");
+    if (hasPerimeter && GEOSPreparedContains_r(ctx.handle(), prepared, probe.get()) == 1) continue;
+    const CellTally tally = tallyCells(face, blockOfCell, city.grid);
+    int externalCells = 0;
+    for (const auto& [block, cells] : tally.blocks)
+      if (!city.blocks[block].internal) externalCells += cells;
+    const int land = tally.cells - tally.road - tally.water;
+    if (externalCells > 0 && externalCells > options.externalCellShare * land) {
+      orientClockwise(face);
+      out.blocks.push_back(std::move(face));
+    } else {
+      ++out.droppedFaces;
+    }
+  }
+  reportProgress(progress, 1.0, "external blocks");
+  return out;
+}
+
+}  // namespace urbanvec::vectorize

@@ -1,0 +1,71 @@
+// Stage A5 (spec §3 A5), with the [INFERENCE] rule that a parcel whose first patch is in no block is
+// attached to nothing and counted.
+#include "urbanvec/vectorize/parcel_loading.hpp"
+
+#include <algorithm>
+#include <array>
+#include <unordered_map>
+
+namespace urbanvec::vectorize {
+
+ParcelLoading loadParcels(const VectorizeInput& input, const Grid<std::int32_t>& blockOf,
+                          std::vector<SimBlock>& blocks, const Progress& progress) {
+  ParcelLoading out;
+  const Grid<std::int32_t>& ids = input.parcelIds;
+  if (ids.size() == 0) {
+    reportProgress(progress, 1.0, "parcels");
+    return out;
+  }
+  const int w = ids.width, h = ids.height;
+  std::unordered_map<std::int32_t, int> indexOf;
+  for (int i = 0; i < w * h; ++i) {
+    const std::int32_t id = ids.cells[i];
+    if (id <= 0) continue;
+    auto [it, isNew] = indexOf.try_emplace(id, static_cast<int>(out.parcels.size()));
+    if (isNew) {
+      SimParcel p;
+      p.id = id;
+      out.parcels.push_back(p);
+    }
+    out.parcels[it->second].patches.push_back(i);
+  }
+  std::unordered_map<std::int32_t, const ParcelRecord*> record;
+  for (const ParcelRecord& r : input.parcelTable) record[r.id] = &r;
+  const bool hasDensity = input.density.size() == ids.size();
+  for (SimParcel& p : out.parcels) {
+    p.area = static_cast<double>(p.patches.size());
+    Vec2 sum;
+    double people = 0;
+    std::array<int, kLandUseClassCount> votes{};
+    for (int i : p.patches) {
+      sum += patchCentre(i % w, i / w, h);
+      if (hasDensity) people += input.density.cells[i];
+      const std::uint8_t u = input.landUse.cells[i];
+      if (u < kLandUseClassCount) ++votes[u];
+    }
+    p.center = sum / p.area;
+    auto it = record.find(p.id);
+    if (it != record.end()) {
+      p.use = it->second->use;
+      p.population = it->second->population;
+    } else {
+      // Majority use of its patches; on a tie the lower class code wins.
+      int best = 0;
+      for (int u = 1; u < kLandUseClassCount; ++u)
+        if (votes[u] > votes[best]) best = u;
+      p.use = static_cast<LandUse>(best);
+      p.population = people;
+      ++out.derivedFromRaster;
+    }
+    p.simBlock = blockOf.cells[p.patches.front()];
+    if (p.simBlock < 0) ++out.unattached;
+  }
+  std::sort(out.parcels.begin(), out.parcels.end(),
+            [](const SimParcel& a, const SimParcel& b) { return a.id < b.id; });
+  for (size_t k = 0; k < out.parcels.size(); ++k)
+    if (out.parcels[k].simBlock >= 0) blocks[out.parcels[k].simBlock].parcels.push_back(static_cast<int>(k));
+  reportProgress(progress, 1.0, "parcels");
+  return out;
+}
+
+}  // namespace urbanvec::vectorize

@@ -1,0 +1,386 @@
+// Spec §3 E2 (thesis §3.4.3 "Regular Subdivision", paper §3.4.1) with the [INFERENCE] algorithm of the
+// spec and its resolutions Q16 (aspect rule against the 0.25 threshold), Q17 (road-facing = on the
+// curb-derived boundary, merged contiguously), Q18 (the transferred cut is the chord nearest the
+// sampled point), Q19 (70% measured on the simulated block) and Q20 (smallest simulated parcel).
+#include "urbanvec/vectorize/regular_subdivision.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "urbanvec/vectorize/spine_subdivision.hpp"
+
+namespace urbanvec::vectorize::parcels {
+
+namespace {
+
+constexpr double kOvershoot = 1e-7;  ///< cut overshoot past the parcel boundary so noding closes it, cells
+
+double segmentDistance(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 ab = b - a;
+  const double len2 = dot(ab, ab);
+  const double t = len2 > 0.0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+  return urbanvec::distance(p, a + ab * t);
+}
+
+double aspectOf(const Polygon& p) {
+  return orientedBox(p).aspect();
+}
+
+}  // namespace
+
+RoadFrontage::RoadFrontage(const geos::Context& geos, const MultiLineString& roadFacing, double tolerance)
+    : geos_(geos), tolerance_(tolerance) {
+  for (const LineString& line : roadFacing)
+    for (size_t i = 0; i + 1 < line.size(); ++i)
+      if (line[i] != line[i + 1]) segments_.push_back({line[i], line[i + 1]});
+  if (segments_.empty()) return;
+  geos::GeomPtr lines = geos.multiLineString(roadFacing);
+  band_ = geos.own(GEOSBufferWithStyle_r(geos.handle(), lines.get(), tolerance, 2, GEOSBUF_CAP_FLAT,
+                                         GEOSBUF_JOIN_MITRE, 2.0),
+                   "buffer");
+}
+
+double RoadFrontage::longest(const Polygon& parcel) const {
+  double best = longestOnRing(parcel.outer);
+  for (const Ring& h : parcel.holes) best = std::max(best, longestOnRing(h));
+  return best;
+}
+
+double RoadFrontage::longestOnRing(const Ring& ring) const {
+  if (segments_.empty() || ring.size() < 3) return 0.0;
+  const size_t n = ring.size() - 1;
+  const double tol = tolerance_;
+  // Covered intervals (in length units along each edge) from collinear road-facing segments.
+  std::vector<std::vector<std::pair<double, double>>> cover(n);
+  std::vector<double> edgeLength(n, 0.0);
+  double coveredTotal = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    const Vec2 a = ring[i], b = ring[i + 1];
+    const double len = urbanvec::distance(a, b);
+    edgeLength[i] = len;
+    if (len <= 0.0) continue;
+    const Vec2 d = (b - a) / len;
+    const Vec2 nrm{-d.y, d.x};
+    const double minX = std::min(a.x, b.x) - tol, maxX = std::max(a.x, b.x) + tol;
+    const double minY = std::min(a.y, b.y) - tol, maxY = std::max(a.y, b.y) + tol;
+    auto& c = cover[i];
+    for (const auto& seg : segments_) {
+      if (std::max(seg[0].x, seg[1].x) < minX || std::min(seg[0].x, seg[1].x) > maxX ||
+          std::max(seg[0].y, seg[1].y) < minY || std::min(seg[0].y, seg[1].y) > maxY)
+        continue;
+      if (std::fabs(dot(seg[0] - a, nrm)) > tol || std::fabs(dot(seg[1] - a, nrm)) > tol) continue;
+      const double s0 = dot(seg[0] - a, d), s1 = dot(seg[1] - a, d);
+      const double lo = std::max(0.0, std::min(s0, s1)), hi = std::min(len, std::max(s0, s1));
+      if (hi > lo) c.emplace_back(lo, hi);
+    }
+    std::sort(c.begin(), c.end());
+    std::vector<std::pair<double, double>> merged;
+    for (const auto& iv : c) {
+      if (!merged.empty() && iv.first <= merged.back().second + tol)
+        merged.back().second = std::max(merged.back().second, iv.second);
+      else
+        merged.push_back(iv);
+    }
+    c.swap(merged);
+    for (const auto& iv : c) coveredTotal += iv.second - iv.first;
+  }
+  // Chain the covered pieces along the ring; two laps join a run across the ring's start.
+  double best = 0.0, run = 0.0;
+  for (size_t k = 0; k < 2 * n; ++k) {
+    const size_t i = k % n;
+    const auto& c = cover[i];
+    if (c.empty()) {
+      if (edgeLength[i] > tol) run = 0.0;
+      continue;
+    }
+    const double firstLength = c.front().second - c.front().first;
+    run = c.front().first <= tol ? run + firstLength : firstLength;
+    best = std::max(best, run);
+    for (size_t j = 1; j < c.size(); ++j) {
+      run = c[j].second - c[j].first;
+      best = std::max(best, run);
+    }
+    if (c.back().second < edgeLength[i] - tol) run = 0.0;
+  }
+  return std::min(best, coveredTotal);
+}
+
+double RoadFrontage::longestGeos(const Polygon& parcel) const {
+  if (segments_.empty()) return 0.0;
+  GEOSContextHandle_t h = geos_.handle();
+  geos::GeomPtr polygon = geos_.polygon(parcel);
+  geos::GeomPtr boundary = geos_.own(GEOSBoundary_r(h, polygon.get()), "boundary");
+  geos::GeomPtr onRoad = geos_.own(GEOSIntersection_r(h, boundary.get(), band_.get()), "intersection");
+  const MultiLineString pieces = geos_.toLines(onRoad.get());
+  if (pieces.empty()) return 0.0;
+  geos::GeomPtr merged = geos_.own(GEOSLineMerge_r(h, geos_.multiLineString(pieces).get()), "lineMerge");
+  double best = 0.0;
+  for (const LineString& l : geos_.toLines(merged.get())) best = std::max(best, length(l));
+  return best;
+}
+
+double RoadFrontage::distance(const Vec2& p) const {
+  double best = 1e300;
+  for (const auto& s : segments_) best = std::min(best, segmentDistance(p, s[0], s[1]));
+  return best;
+}
+
+SplitRules splitRules(const SimBlockSummary& sim, const RegularSubdivisionOptions& options) {
+  SplitRules rules;
+  double smallest = 0.0, residential = 0.0;
+  for (const SimParcel& p : sim.parcels) {
+    if (smallest == 0.0 || p.cells < smallest) smallest = p.cells;
+    if (p.use == LandUse::Residential) residential += p.cells;
+  }
+  rules.minArea = options.minAreaFraction * smallest;
+  rules.minFrontage = options.minFrontage;
+  rules.aspectThreshold = options.aspectThreshold;
+  rules.compareParentAspect = options.compareParentAspect;
+  rules.residentialRule = sim.area > 0.0 && residential / sim.area >= options.residentialShare;
+  rules.minChildShare = options.minChildShare;
+  return rules;
+}
+
+std::string_view verdictName(SplitVerdict verdict) {
+  switch (verdict) {
+    case SplitVerdict::Accepted:
+      return "accepted";
+    case SplitVerdict::TooSmall:
+      return "minimum parcel size";
+    case SplitVerdict::NoRoadAccess:
+      return "road access";
+    case SplitVerdict::TooRectangular:
+      return "limited rectangularity";
+    case SplitVerdict::UnequalResidential:
+      return "residential size variation";
+    case SplitVerdict::BadGeometry:
+      return "cut geometry";
+  }
+  return "unknown";
+}
+
+std::string SplitStats::shortfallReason() const {
+  int worst = 1;
+  for (int i = 2; i < 6; ++i)
+    if (rejected[i] > rejected[worst]) worst = i;
+  return "no acceptable split (mostly " + std::string(verdictName(static_cast<SplitVerdict>(worst))) + ")";
+}
+
+SplitVerdict checkSplit(const Polygon& parent, const Polygon& a, const Polygon& b, const SplitRules& rules,
+                        const RoadFrontage& frontage) {
+  const double areaA = area(a), areaB = area(b), areaP = area(parent);
+  if (areaA < rules.minArea || areaB < rules.minArea || areaA <= 0.0 || areaB <= 0.0)
+    return SplitVerdict::TooSmall;
+  const double parentAspect = aspectOf(parent), aspectA = aspectOf(a), aspectB = aspectOf(b);
+  if (rules.compareParentAspect) {
+    const bool ok = parentAspect >= rules.aspectThreshold
+                        ? (aspectA >= parentAspect && aspectB >= parentAspect)
+                        : (aspectA > parentAspect && aspectB > parentAspect);
+    if (!ok) return SplitVerdict::TooRectangular;
+  } else {
+    const bool ok = parentAspect >= rules.aspectThreshold
+                        ? (aspectA >= rules.aspectThreshold && aspectB >= rules.aspectThreshold)
+                        : (aspectA > parentAspect && aspectB > parentAspect);
+    if (!ok) return SplitVerdict::TooRectangular;
+  }
+  if (rules.residentialRule && (areaA < rules.minChildShare * areaP || areaB < rules.minChildShare * areaP))
+    return SplitVerdict::UnequalResidential;
+  // Road access last: it is the only constraint that needs more than the polygons' moments.
+  if (frontage.longest(a) < rules.minFrontage || frontage.longest(b) < rules.minFrontage)
+    return SplitVerdict::NoRoadAccess;
+  return SplitVerdict::Accepted;
+}
+
+SubdivisionParcel::SubdivisionParcel(Polygon p) : polygon(std::move(p)), area(urbanvec::area(polygon)) {}
+
+namespace {
+
+void prepare(SubdivisionParcel& parcel, const RegularSubdivisionOptions& options,
+             const RoadFrontage& frontage, const geos::Context& geos) {
+  parcel.prepared = true;
+  Polygon simplified = parcel.polygon;
+  if (options.simplifyTolerance > 0.0) {
+    geos::GeomPtr g = geos.polygon(parcel.polygon);
+    geos::GeomPtr s = geos.own(
+        GEOSTopologyPreserveSimplify_r(geos.handle(), g.get(), options.simplifyTolerance), "simplify");
+    MultiPolygon parts = geos.toPolygons(s.get());
+    if (parts.size() == 1 && area(parts.front()) > 0.0) simplified = parts.front();
+  }
+  // An edge of the simplified copy faces the road when it runs along road-facing lines, i.e. its
+  // quarter points all lie within the simplification tolerance of them.
+  const double near = options.simplifyTolerance + options.frontageTolerance;
+  auto scanRing = [&](const Ring& ring) {
+    for (size_t i = 0; i + 1 < ring.size(); ++i) {
+      const Vec2 a = ring[i], b = ring[i + 1];
+      if (distance(a, b) <= 1e-9) continue;
+      bool facing = true;
+      for (double t : {0.25, 0.5, 0.75})
+        if (frontage.distance(a + (b - a) * t) > near) facing = false;
+      if (facing) parcel.roadEdges.push_back({a, b});
+    }
+  };
+  scanRing(simplified.outer);
+  for (const Ring& h : simplified.holes) scanRing(h);
+}
+
+/// Splits a hole-free ring by the piece of the line q + s·dir that lies inside it nearest q. Returns
+/// false in degenerate cases (the line through a vertex or along an edge), which GEOS then handles.
+bool splitRingByLine(const Ring& ring, const Vec2& q, const Vec2& dir, std::array<Polygon, 2>& out) {
+  const size_t n = ring.size() - 1;
+  struct Crossing {
+    double s;
+    size_t edge;
+    Vec2 point;
+  };
+  std::vector<Crossing> crossings;
+  for (size_t i = 0; i < n; ++i) {
+    const Vec2 p0 = ring[i], e = ring[i + 1] - ring[i];
+    const double denom = cross(dir, e);
+    const double scale = length(e);
+    if (scale <= 0.0) continue;
+    if (std::fabs(denom) <= 1e-12 * scale) {
+      if (std::fabs(cross(p0 - q, dir)) <= 1e-9) return false;  // along the edge
+      continue;
+    }
+    const double u = cross(p0 - q, dir) / denom;
+    if (u < -1e-12 || u > 1.0 + 1e-12) continue;
+    if (u < 1e-9 || u > 1.0 - 1e-9) return false;  // through a vertex
+    const double s = cross(p0 - q, e) / denom;
+    crossings.push_back({s, i, p0 + e * u});
+  }
+  if (crossings.size() < 2 || crossings.size() % 2 != 0) return false;
+  std::sort(crossings.begin(), crossings.end(),
+            [](const Crossing& a, const Crossing& b) { return a.s < b.s; });
+  size_t pick = 0;
+  double best = 1e300;
+  for (size_t k = 0; k + 1 < crossings.size(); k += 2) {
+    const double lo = crossings[k].s, hi = crossings[k + 1].s;
+    const double d = (lo <= 0.0 && hi >= 0.0) ? 0.0 : std::min(std::fabs(lo), std::fabs(hi));
+    if (d < best) {
+      best = d;
+      pick = k;
+    }
+  }
+  if (crossings[pick + 1].s - crossings[pick].s <= 1e-9) return false;
+  const Crossing& a = crossings[pick];
+  const Crossing& b = crossings[pick + 1];
+  auto walk = [&](const Crossing& from, const Crossing& to) {
+    Ring r{from.point};
+    for (size_t i = (from.edge + 1) % n;; i = (i + 1) % n) {
+      r.push_back(ring[i]);
+      if (i == to.edge) break;
+    }
+    r.push_back(to.point);
+    r.push_back(from.point);
+    return r;
+  };
+  out[0] = Polygon{walk(a, b), {}};
+  out[1] = Polygon{walk(b, a), {}};
+  return true;
+}
+
+}  // namespace
+
+SplitVerdict trySplit(SubdivisionParcel& parcel, const SplitRules& rules,
+                      const RegularSubdivisionOptions& options, const RoadFrontage& frontage,
+                      const geos::Context& geos, Rng& rng, std::array<Polygon, 2>& out) {
+  if (!parcel.prepared) prepare(parcel, options, frontage, geos);
+  if (parcel.roadEdges.empty()) return SplitVerdict::NoRoadAccess;
+
+  size_t edge = 0;
+  if (options.lengthWeightedEdges) {
+    std::vector<double> weights;
+    for (const auto& e : parcel.roadEdges) weights.push_back(distance(e[0], e[1]));
+    edge = std::discrete_distribution<size_t>(weights.begin(), weights.end())(rng);
+  } else {
+    edge = std::uniform_int_distribution<size_t>(0, parcel.roadEdges.size() - 1)(rng);
+  }
+  std::normal_distribution<double> position(0.5, options.positionSigma);
+  double t = position(rng);
+  for (int i = 0; i < 64 && (t <= 0.0 || t >= 1.0); ++i) t = position(rng);
+  if (t <= 0.0 || t >= 1.0) t = 0.5;
+
+  const Vec2 a = parcel.roadEdges[edge][0], b = parcel.roadEdges[edge][1];
+  const Vec2 q = a + (b - a) * t;
+  const Vec2 along = (b - a) / distance(a, b);
+  const Vec2 normal{-along.y, along.x};
+  double minX = 1e300, minY = 1e300, maxX = -1e300, maxY = -1e300;
+  for (const Vec2& p : parcel.polygon.outer) {
+    minX = std::min(minX, p.x);
+    minY = std::min(minY, p.y);
+    maxX = std::max(maxX, p.x);
+    maxY = std::max(maxY, p.y);
+  }
+  const double reach = std::hypot(maxX - minX, maxY - minY) + 1.0;
+
+  // Transfer to the original: the piece of the perpendicular line inside the original parcel that is
+  // nearest the sampled point (Q18). Plain code for hole-free parcels, GEOS otherwise.
+  if (parcel.polygon.holes.empty() && parcel.polygon.outer.size() >= 4) {
+    std::array<Polygon, 2> children;
+    if (splitRingByLine(parcel.polygon.outer, q, normal, children)) {
+      const SplitVerdict verdict = checkSplit(parcel.polygon, children[0], children[1], rules, frontage);
+      if (verdict == SplitVerdict::Accepted) out = std::move(children);
+      return verdict;
+    }
+  }
+  GEOSContextHandle_t h = geos.handle();
+  geos::GeomPtr polygon = geos.polygon(parcel.polygon);
+  geos::GeomPtr line = geos.lineString({q - normal * reach, q + normal * reach});
+  geos::GeomPtr inside = geos.own(GEOSIntersection_r(h, line.get(), polygon.get()), "intersection");
+  const MultiLineString pieces = geos.toLines(inside.get());
+  const LineString* chord = nullptr;
+  double best = 1e300;
+  for (const LineString& piece : pieces) {
+    for (size_t i = 0; i + 1 < piece.size(); ++i) {
+      const double d = segmentDistance(q, piece[i], piece[i + 1]);
+      if (d < best) {
+        best = d;
+        chord = &piece;
+      }
+    }
+  }
+  if (!chord || length(*chord) <= 1e-9) return SplitVerdict::BadGeometry;
+  const Vec2 s = chord->front(), e = chord->back();
+  const Vec2 dir = (e - s) / distance(s, e);
+  const MultiLineString cut{{s - dir * kOvershoot, e + dir * kOvershoot}};
+  MultiPolygon faces = facesInside(geos, polygon.get(), cut);
+  if (faces.size() != 2) return SplitVerdict::BadGeometry;
+  const SplitVerdict verdict = checkSplit(parcel.polygon, faces[0], faces[1], rules, frontage);
+  if (verdict == SplitVerdict::Accepted) {
+    out[0] = std::move(faces[0]);
+    out[1] = std::move(faces[1]);
+  }
+  return verdict;
+}
+
+bool subdivide(std::vector<SubdivisionParcel>& parcels, int target, const SplitRules& rules,
+               const RegularSubdivisionOptions& options, const RoadFrontage& frontage,
+               const geos::Context& geos, Rng& rng, SplitStats& stats) {
+  while (static_cast<int>(parcels.size()) < target) {
+    size_t largest = 0;
+    for (size_t i = 1; i < parcels.size(); ++i)
+      if (parcels[i].area > parcels[largest].area) largest = i;
+    bool split = false;
+    for (int attempt = 0; attempt < options.maxAttempts && !split; ++attempt) {
+      size_t index = largest;
+      if (attempt >= options.maxLargestAttempts && parcels.size() > 1) {
+        index = std::uniform_int_distribution<size_t>(0, parcels.size() - 2)(rng);
+        if (index >= largest) ++index;  // a random *other* parcel
+      }
+      std::array<Polygon, 2> children;
+      const SplitVerdict verdict = trySplit(parcels[index], rules, options, frontage, geos, rng, children);
+      if (verdict != SplitVerdict::Accepted) {
+        ++stats.rejected[static_cast<int>(verdict)];
+        continue;
+      }
+      ++stats.accepted;
+      parcels[index] = SubdivisionParcel(std::move(children[0]));
+      parcels.emplace_back(std::move(children[1]));
+      split = true;
+    }
+    if (!split) return false;
+  }
+  return true;
+}
+
+}  // namespace urbanvec::vectorize::parcels

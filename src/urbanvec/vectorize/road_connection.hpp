@@ -1,0 +1,36 @@
+// Stage B3 — primary and secondary connection (spec §3 B3; thesis §3.2.3, paper §3.2.1): the
+// disjoint primary and secondary graphs are merged by linking each connection node to the closest
+// primary node, clusters are simplified again, and perimeter ends are connected to the roads.
+#pragma once
+
+#include "urbanvec/core/progress.hpp"
+#include "urbanvec/vectorize/road_graph.hpp"
+
+namespace urbanvec::vectorize {
+
+struct RoadConnectionOptions {
+  /// [INFERENCE] A connection node links to the closest primary node only within this distance, in
+  /// pw (a secondary patch touching a 2-wide primary is about 1-1.6 pw from its centreline; farther
+  /// nodes mean the primary road had no node nearby and a link would cut across blocks).
+  double maxConnectionDistance = 3.0;
+  /// [INFERENCE] A perimeter end links to the nearest road node without a perimeter link only
+  /// within this distance, in pw.
+  double maxPerimeterDistance = 3.0;
+  /// As RoadGraphOptions::collapseTwoLinkClusters, for the clusters the merge creates.
+  bool collapseTwoLinkClusters = true;
+  /// As RoadGraphOptions::maxLinkLength, for the new links (A4.6 re-run), in pw.
+  double maxLinkLength = 2.0;
+};
+
+struct RoadConnectionStats {
+  std::size_t connections = 0;  ///< secondary-to-primary links added
+  std::size_t unconnected = 0;  ///< connection nodes with no primary node in reach
+  std::size_t clustersMerged = 0;
+  std::size_t perimeterEndsLinked = 0;
+  std::size_t perimeterEndsLeft = 0;  ///< ends with no free road node in reach
+};
+
+RoadConnectionStats connectRoads(RoadGraph& graph, const RoadConnectionOptions& options,
+                                 const Progress& progress = {});
+
+}  // namespace urbanvec::vectorize

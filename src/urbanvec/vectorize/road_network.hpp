@@ -1,0 +1,86 @@
+// The plain road-network interface between vectorizer part 1 (stages A1-A5, B1-B6 of
+// shared/specs/sexton-vectorizer.md: raster -> smoothed road graph) and part 2 (stages C, D1-D5:
+// pavement and blocks). Part 1 fills these structs after B6; part 2 reads nothing else.
+//
+// Every position is in the spec's internal frame (§0): cell units, x = col (east-positive),
+// y = H - row (north-positive), so cell (c, r) covers [c, c+1] x [H-r-1, H-r]. World coordinates
+// are spec.transform.pixelToWorld(x, H - y) for the grid's GridSpec.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "urbanvec/core/geometry.hpp"
+#include "urbanvec/core/grid.hpp"
+#include "urbanvec/core/landuse.hpp"
+
+namespace urbanvec::vectorize {
+
+/// The class of a road segment (CONVENTIONS.md `roads.road_class`).
+enum class RoadClass : std::uint8_t {
+  Primary,    ///< 2 cells wide
+  Secondary,  ///< 1 cell wide
+  Perimeter   ///< an external block boundary line (A4.8): no pavement, bounds external blocks
+};
+
+/// The kind of a graph node (CONVENTIONS.md `road_nodes.kind`).
+enum class NetworkNodeKind : std::uint8_t {
+  Intersection,  ///< more than two links
+  DeadEnd,       ///< one link
+  Connection,    ///< where a primary and a secondary road meet with two links
+  Road           ///< an ordinary node inside a segment
+};
+
+struct NetworkNode {
+  Vec2 position;  ///< internal frame (cells)
+  NetworkNodeKind kind = NetworkNodeKind::Road;
+  int degree = 0;  ///< number of links at the node, perimeter links included
+};
+
+/// A chain of links between two nodes that are intersections, dead ends or connections.
+struct NetworkSegment {
+  /// Node positions from `fromNode` to `toNode` inclusive (at least two points), internal frame.
+  LineString points;
+  RoadClass roadClass = RoadClass::Secondary;
+  int fromNode = -1;  ///< index into RoadNetwork::nodes
+  int toNode = -1;    ///< index into RoadNetwork::nodes; equals fromNode for a closed loop
+};
+
+/// The road graph after B6 plus the external perimeter lines of A4.8 (class Perimeter segments).
+struct RoadNetwork {
+  std::vector<NetworkNode> nodes;
+  std::vector<NetworkSegment> segments;
+};
+
+/// A grid cell, (col, row) as in the rasters (row 0 = north).
+struct GridCell {
+  std::int32_t col = 0;
+  std::int32_t row = 0;
+};
+
+/// A simulated block of A2: a 4-connected region of non-road cells.
+struct SimulatedBlock {
+  int id = 0;
+  bool internal = true;  ///< enclosed by roads (does not touch the grid border)
+  std::vector<GridCell> cells;
+  Vec2 centre;                 ///< mean of the cell centres, internal frame
+  std::vector<int> parcelIds;  ///< SimulatedParcel::id of the parcels attached in A5
+};
+
+/// A simulated parcel of A5 (one ownership id).
+struct SimulatedParcel {
+  int id = 0;
+  LandUse landUse = LandUse::Unused;
+  std::vector<GridCell> cells;
+  Vec2 centre;  ///< mean of the cell centres, internal frame
+};
+
+/// The raster-side data part 2 needs: land use (for water and cell ownership tests) and the
+/// simulated blocks and parcels.
+struct SimulatedCity {
+  Grid<LandUse> grid;  ///< the land-use grid after A3 (water cells are LandUse::Water)
+  std::vector<SimulatedBlock> blocks;
+  std::vector<SimulatedParcel> parcels;
+};
+
+}  // namespace urbanvec::vectorize

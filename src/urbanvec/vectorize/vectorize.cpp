@@ -1,0 +1,195 @@
+// The pipeline of spec §1, stages A1–A5 and B1–B6, each timed and measured.
+#include "urbanvec/vectorize/vectorize.hpp"
+
+#include <chrono>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <sstream>
+
+#include "urbanvec/core/error.hpp"
+#include "urbanvec/vectorize/road_checks.hpp"
+#include "urbanvec/vectorize/road_output.hpp"
+
+namespace urbanvec::vectorize {
+
+namespace {
+
+/// Resets the kernel's resident-memory high-water mark (Linux "clear_refs" 5); harmless elsewhere.
+void resetPeakMemory() {
+  std::ofstream f("/proc/self/clear_refs");
+  if (f) f << "5";
+}
+
+long peakMemoryKb() {
+  std::ifstream f("/proc/self/status");
+  std::string line;
+  while (std::getline(f, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::stol(line.substr(6));
+  return -1;
+}
+
+void validate(const VectorizeInput& in) {
+  const Grid<std::uint8_t>& lu = in.landUse;
+  if (lu.width <= 0 || lu.height <= 0 || lu.cells.size() != static_cast<size_t>(lu.width) * lu.height)
+    throw invalidInput("the land-use grid has no cells");
+  if (in.spec.width != lu.width || in.spec.height != lu.height)
+    throw invalidInput("the land-use grid is " + std::to_string(lu.width) + "x" + std::to_string(lu.height) +
+                       " cells but its grid description says " + std::to_string(in.spec.width) + "x" +
+                       std::to_string(in.spec.height));
+  for (size_t i = 0; i < lu.cells.size(); ++i)
+    if (lu.cells[i] >= kLandUseClassCount)
+      throw invalidInput("the land-use grid holds value " + std::to_string(lu.cells[i]) + " at column " +
+                         std::to_string(i % lu.width) + ", row " + std::to_string(i / lu.width) +
+                         ", which is not a class code 0..8");
+  if (in.density.size() != 0 && (in.density.width != lu.width || in.density.height != lu.height))
+    throw invalidInput("the density grid does not have the size of the land-use grid");
+  if (in.parcelIds.size() != 0) {
+    if (in.parcelIds.width != lu.width || in.parcelIds.height != lu.height)
+      throw invalidInput("the parcel grid does not have the size of the land-use grid");
+    for (size_t i = 0; i < in.parcelIds.cells.size(); ++i)
+      if (in.parcelIds.cells[i] < 0)
+        throw invalidInput("the parcel grid holds negative parcel id " +
+                           std::to_string(in.parcelIds.cells[i]) + " at column " +
+                           std::to_string(i % lu.width) + ", row " + std::to_string(i / lu.width) +
+                           " (ids must be >= 0, 0 = no parcel)");
+  }
+}
+
+template <class... T>
+std::string counts(const T&... parts) {
+  std::ostringstream s;
+  ((s << parts), ...);
+  return s.str();
+}
+
+}  // namespace
+
+VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& options,
+                          const Progress& progress) {
+  validate(input);
+  VectorizeResult result;
+  result.cells = input.landUse;
+  RoadGraph& graph = result.roads;
+
+  // Stage runner: progress sub-range, timing, per-stage peak memory, graph snapshot.
+  double done = 0;
+  auto run = [&](const std::string& id, const std::string& name, double weight, bool graphStage,
+                 const std::function<std::string(const Progress&)>& body) {
+    const Progress sub = subProgress(progress, done, std::min(1.0, done + weight));
+    reportProgress(sub, 0.0, name);
+    resetPeakMemory();
+    const auto t0 = std::chrono::steady_clock::now();
+    StageReport report;
+    report.id = id;
+    report.name = name;
+    report.summary = body(sub);
+    report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    report.peakMemoryKb = peakMemoryKb();
+    report.nodes = graph.aliveCount();
+    report.links = graph.linkCount();
+    result.stages.push_back(report);
+    if (graphStage && options.keepStageGraphs) result.stageGraphs.emplace_back(id + " " + name, graph);
+    done = std::min(1.0, done + weight);
+    reportProgress(sub, 1.0, name);
+  };
+
+  std::size_t roadCells = 0;
+  for (std::uint8_t c : input.landUse.cells) roadCells += isRoadCode(c);
+  if (roadCells == 0)
+    result.warnings.push_back(
+        "the land-use grid has no road cells (codes 2 and 3): the road layers are empty");
+  else if (roadCells == input.landUse.cells.size())
+    result.warnings.push_back(
+        "every cell of the land-use grid is road: there are no blocks, and the road network collapses to "
+        "intersection clusters");
+
+  run("A2", "raw blocks", 0.05, false, [&](const Progress& p) {
+    RawBlocks rb = buildRawBlocks(result.cells, options.rawBlocks, p);
+    result.blocks = std::move(rb.blocks);
+    result.blockOf = std::move(rb.blockOf);
+    std::size_t internal = 0;
+    for (const SimBlock& b : result.blocks) internal += b.internal;
+    return counts(result.blocks.size(), " blocks (", internal, " internal)");
+  });
+  run("A3", "patch cleaning", 0.05, false, [&](const Progress& p) {
+    const PatchCleaningStats s = cleanIntersectionPatches(result.cells, p);
+    return counts(s.searches, " clusters searched, ", s.removedPatches, " patches removed");
+  });
+  run("A4", "road graph", 0.2, true, [&](const Progress& p) {
+    RoadGraphBuild b = buildRoadGraph(result.cells, options.roadGraph, p);
+    graph = std::move(b.graph);
+    return counts(b.squaresOpened, " 2x2 squares opened, ", b.squaresLeft, " left, ", b.clustersMerged,
+                  " clusters merged, ", b.nodesInserted, " nodes inserted");
+  });
+  run("A4.8", "perimeters", 0.05, true, [&](const Progress& p) {
+    const PerimeterStats s =
+        addExternalPerimeters(graph, result.cells, result.blockOf, result.blocks, options.perimeters, p);
+    if (s.closedLoops > 0)
+      result.warnings.push_back(
+          counts(s.closedLoops,
+                 " closed undeveloped boundaries inside external blocks meet no road and "
+                 "got no perimeter line"));
+    return counts(s.lines, " perimeter lines, ", s.closedLoops, " closed loops skipped");
+  });
+  run("A5", "parcels", 0.03, false, [&](const Progress& p) {
+    ParcelLoading pl = loadParcels(input, result.blockOf, result.blocks, p);
+    result.parcels = std::move(pl.parcels);
+    if (pl.unattached > 0)
+      result.warnings.push_back(counts(pl.unattached,
+                                       " parcels have their first patch outside every block "
+                                       "(road, water or reserved) and are attached to no block"));
+    return counts(result.parcels.size(), " parcels, ", pl.unattached, " unattached, ", pl.derivedFromRaster,
+                  " derived from the rasters");
+  });
+  run("B1", "intersection straightening", 0.1, true, [&](const Progress& p) {
+    const StraighteningStats s = straightenIntersections(graph, options.straightening, p);
+    return counts(s.intersections, " intersections, ", s.pairsSnapped, " pairs snapped");
+  });
+  run("B2", "road smoothing", 0.05, true, [&](const Progress& p) {
+    const RoadSmoothingStats s = smoothRoads(graph, options.roadSmoothing, p);
+    return counts(s.nodesMoved, " nodes smoothed, ", s.intersectionsMoved, " intersections re-straightened");
+  });
+  run("B3", "primary/secondary connection", 0.1, true, [&](const Progress& p) {
+    const RoadConnectionStats s = connectRoads(graph, options.connection, p);
+    return counts(s.connections, " connections, ", s.unconnected, " without a primary node in reach, ",
+                  s.clustersMerged, " clusters merged, ", s.perimeterEndsLinked, " perimeter ends linked, ",
+                  s.perimeterEndsLeft, " left");
+  });
+  run("B4", "cycle removal", 0.15, true, [&](const Progress& p) {
+    const CycleRemovalStats s = removeShortCycles(graph, options.cycles, p);
+    return counts(s.crossingsNoded, " crossings noded, ", s.segmentsRemoved, " segments removed in ",
+                  s.rounds, " rounds");
+  });
+  run("B5", "intersection simplification", 0.05, true, [&](const Progress& p) {
+    const IntersectionSimplificationStats s = simplifyIntersections(graph, options.intersections, p);
+    return counts(s.deadEndsRemoved, " dead ends removed, ", s.nodesContracted, " nodes contracted, ",
+                  s.intersectionsMerged, " intersections merged");
+  });
+  run("B6", "curve smoothing", 0.12, true, [&](const Progress& p) {
+    const CurveSmoothingStats s = smoothCurves(graph, options.curves, p);
+    return counts(s.bends, " bends, ", s.nodesInserted, " nodes inserted, ", s.passes, " passes");
+  });
+  run("F", "road output", 0.05, false, [&](const Progress& p) {
+    std::size_t noded = 0;
+    if (options.planarize) {
+      noded = nodeCrossingsAndContractTinyLinks(graph);
+      // [INFERENCE] Loops that B5/B6 collapsed onto a line (doubled roads enclosing nothing) go too.
+      CycleRemovalOptions degenerate;
+      degenerate.maxCycleNodes = std::numeric_limits<int>::max();
+      degenerate.maxFaceArea = 1e-4;
+      removeShortCycles(graph, degenerate);
+      noded += nodeCrossingsAndContractTinyLinks(graph);
+    }
+    reportProgress(p, 0.5, "road output");
+    result.network = buildRoadNetwork(graph, options.outputSimplification);
+    std::vector<Layer> layers = roadLayers(result.network, input.spec);
+    const std::size_t segments = layers[0].features.size();
+    for (Layer& l : layers) result.layers.push_back(std::move(l));
+    return counts(noded, " crossings noded, ", segments, " road segments");
+  });
+  reportProgress(progress, 1.0, "done");
+  return result;
+}
+
+}  // namespace urbanvec::vectorize

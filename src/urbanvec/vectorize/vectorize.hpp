@@ -1,0 +1,81 @@
+// The vectorization pipeline of spec sexton-vectorizer.md §1. This issue implements stages A1–A5 and
+// B1–B6 (raw blocks, road graph, road correction); later stages (C road geometry, D blocks and spines,
+// E parcels) extend VectorizeOptions, VectorizeResult and the stage list in vectorize.cpp.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "urbanvec/core/layer.hpp"
+#include "urbanvec/core/progress.hpp"
+#include "urbanvec/vectorize/curve_smoothing.hpp"
+#include "urbanvec/vectorize/cycle_removal.hpp"
+#include "urbanvec/vectorize/intersection_simplification.hpp"
+#include "urbanvec/vectorize/parcel_loading.hpp"
+#include "urbanvec/vectorize/patch_cleaning.hpp"
+#include "urbanvec/vectorize/perimeters.hpp"
+#include "urbanvec/vectorize/raw_blocks.hpp"
+#include "urbanvec/vectorize/road_connection.hpp"
+#include "urbanvec/vectorize/road_graph_build.hpp"
+#include "urbanvec/vectorize/road_network.hpp"
+#include "urbanvec/vectorize/road_smoothing.hpp"
+#include "urbanvec/vectorize/straightening.hpp"
+#include "urbanvec/vectorize/vectorize_input.hpp"
+
+namespace urbanvec::vectorize {
+
+struct VectorizeOptions {
+  RawBlockOptions rawBlocks;                        ///< A2
+  RoadGraphOptions roadGraph;                       ///< A4.1–A4.7
+  PerimeterOptions perimeters;                      ///< A4.8
+  StraighteningOptions straightening;               ///< B1
+  RoadSmoothingOptions roadSmoothing;               ///< B2
+  RoadConnectionOptions connection;                 ///< B3
+  CycleRemovalOptions cycles;                       ///< B4
+  IntersectionSimplificationOptions intersections;  ///< B5
+  CurveSmoothingOptions curves;                     ///< B6
+  /// [INFERENCE] Node crossing links and contract zero-length links after B6, so segments meet only
+  /// at shared nodes (the output contract); false = leave the B6 graph as it is.
+  bool planarize = true;
+  /// [INFERENCE, output only] Tolerance of the topology-preserving simplification of the output road
+  /// segments, in pw (0 = every graph node becomes a vertex). The graph keeps its nodes; this removes
+  /// the sub-cell wiggle left by smoothing a staircase, which otherwise dominates the turning per km.
+  double outputSimplification = 0.3;
+  /// Keep a copy of the road graph after every graph stage (for -debug-stages).
+  bool keepStageGraphs = false;
+};
+
+/// What one stage did and cost.
+struct StageReport {
+  std::string id;    ///< "A4", "B1" ...
+  std::string name;  ///< "road graph", "intersection straightening" ...
+  double seconds = 0;
+  long peakMemoryKb = -1;  ///< peak resident memory during the stage (Linux), -1 when unknown
+  std::size_t nodes = 0;   ///< road graph nodes after the stage
+  std::size_t links = 0;
+  std::string summary;  ///< counts the stage reports, one line
+};
+
+struct VectorizeResult {
+  /// Land-use codes after cleaning (kRemovedRoad where A3/A4.3 removed road).
+  Grid<std::uint8_t> cells;
+  std::vector<SimBlock> blocks;    ///< A2 simulated blocks, with their parcels (A5)
+  Grid<std::int32_t> blockOf;      ///< block index per patch, -1 where none
+  std::vector<SimParcel> parcels;  ///< A5 simulated parcels
+  RoadGraph roads;                 ///< the road graph after B6 (and planarization), internal frame (pw)
+  /// Its segments and segment-end nodes (the part 1 -> part 2 interface), output simplification applied.
+  RoadNetwork network;
+  std::vector<StageReport> stages;
+  /// (stage id + name, graph) after each graph stage when keepStageGraphs.
+  std::vector<std::pair<std::string, RoadGraph>> stageGraphs;
+  std::vector<std::string> warnings;
+  /// Output layers in world coordinates: roads, road_nodes.
+  std::vector<Layer> layers;
+};
+
+/// Runs the pipeline. Throws urbanvec::Error (InvalidInput) on inconsistent input and Cancelled when
+/// the progress callback asks to stop.
+VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& options,
+                          const Progress& progress = {});
+
+}  // namespace urbanvec::vectorize

@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# `urbanvec vectorize` on real-derived grids: layers, counts, geometry types, CRS, fields, topology,
+# debug stages, progress lines, and the output contract (no clobbering without -overwrite).
+set -e
+source "$(dirname "$0")/lib.sh"
+
+# The sample grids when present; otherwise grids made here with gridify from the shared real data.
+grids=()
+for city in monaco bubenec; do
+  if [ -f "$SAMPLE_DIR/$city/landuse.tif" ]; then grids+=("$SAMPLE_DIR/$city"); fi
+done
+if [ ${#grids[@]} -eq 0 ]; then
+  run_cmd gridify -q -tr 6 -roads-layer streets -buildings-layer buildings -parcels-layer plots \
+    "$SHARED_DIR/data/real/bubenec.gpkg" "$WORK/bubenec"
+  expect_status 0
+  grids=("$WORK/bubenec")
+fi
+
+for g in "${grids[@]}"; do
+  name=$(basename "$g")
+  out="$WORK/$name.gpkg"
+  run_cmd vectorize -check -density "$g/density.tif" -parcels "$g/parcels.tif" -parcel-table "$g/parcels.csv" \
+    "$g/landuse.tif" "$out"
+  expect_status 0
+  expect_stdout_contains "0 crossings, 0 zero-length pieces, 0 duplicate nodes, 0 segment ends without a node"
+  expect_exists "$out"
+  info=$(ogrinfo -ro -so "$out" roads)
+  case "$info" in *"Geometry: Line String"*) ;; *) fail "$name: roads are not LineStrings";; esac
+  for f in "road_id: Integer" "road_class: String" "from_node: Integer" "to_node: Integer" "length: Real"; do
+    case "$info" in *"$f"*) ;; *) fail "$name: roads lack field '$f'";; esac
+  done
+  ninfo=$(ogrinfo -ro -so "$out" road_nodes)
+  case "$ninfo" in *"Geometry: Point"*) ;; *) fail "$name: road_nodes are not Points";; esac
+  for f in "node_id: Integer" "kind: String" "degree: Integer"; do
+    case "$ninfo" in *"$f"*) ;; *) fail "$name: road_nodes lack field '$f'";; esac
+  done
+  # CRS: the land-use raster's.
+  srs_out=$(ogrinfo -ro -so "$out" roads | sed -n 's/^.*ID\["EPSG",\([0-9]*\)\]\]$/\1/p' | tail -1)
+  srs_in=$(gdalinfo "$g/landuse.tif" | sed -n 's/^.*ID\["EPSG",\([0-9]*\)\]\]$/\1/p' | tail -1)
+  expect_eq "$srs_out" "$srs_in" "$name: output CRS"
+  roads=$(feature_count "$out" roads)
+  nodes=$(feature_count "$out" road_nodes)
+  [ "${roads:-0}" -gt 20 ] || fail "$name: only '${roads}' road segments"
+  [ "${nodes:-0}" -gt 10 ] || fail "$name: only '${nodes}' road nodes"
+  # Classes present, and no zero-length segment.
+  classes=$(ogrinfo -ro -q "$out" -sql "SELECT DISTINCT road_class FROM roads ORDER BY road_class" | sed -n 's/^ *road_class (String) = //p' | tr '\n' ' ')
+  case "$classes" in *secondary*) ;; *) fail "$name: no secondary roads ($classes)";; esac
+  zero=$(ogrinfo -ro -q "$out" -sql "SELECT COUNT(*) AS n FROM roads WHERE length <= 0" | sed -n 's/^ *n (Integer) = //p')
+  expect_eq "$zero" "0" "$name: zero-length roads"
+  # Segment ends are road nodes: from_node/to_node name existing nodes.
+  dangling=$(ogrinfo -ro -q "$out" -dialect SQLite -sql "SELECT COUNT(*) AS n FROM roads WHERE from_node NOT IN (SELECT node_id FROM road_nodes) OR to_node NOT IN (SELECT node_id FROM road_nodes)" | sed -n 's/^ *n (Integer) = //p')
+  expect_eq "$dangling" "0" "$name: roads naming missing nodes"
+done
+
+g=${grids[0]}
+# An existing output is an error without -overwrite, and stays untouched.
+before=$(md5sum "$WORK/$(basename "$g").gpkg")
+run_cmd vectorize "$g/landuse.tif" "$WORK/$(basename "$g").gpkg"
+expect_status 1
+expect_stderr_contains "ERROR: "
+expect_eq "$(md5sum "$WORK/$(basename "$g").gpkg")" "$before" "untouched output"
+
+# -progress lines names every stage; -debug-stages writes one links/nodes layer pair per graph stage.
+run_cmd vectorize -progress lines -timings -debug-stages "$WORK/stages" "$g/landuse.tif" "$WORK/p.gpkg"
+expect_status 0
+for stage in "raw blocks" "patch cleaning" "road graph" "perimeters" "parcels" "intersection straightening" \
+  "road smoothing" "primary/secondary connection" "cycle removal" "intersection simplification" "curve smoothing"; do
+  case "$OUT" in *"PROGRESS "*" $stage"*) ;; *) fail "no progress line for stage '$stage'";; esac
+done
+expect_stdout_contains "PROGRESS 100"
+expect_stdout_contains "peak_MB"
+layers=$(ogrinfo -ro -q "$WORK/stages/stages.gpkg" | grep -c "_links (Line String)" || true)
+expect_eq "$layers" "9" "debug stage layers"
+expect_no_temp "$WORK"
+
+finish

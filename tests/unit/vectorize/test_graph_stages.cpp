@@ -1,0 +1,333 @@
+// Stages A4 and B1–B6 on small drawn grids and hand-made graphs with known answers (spec §11.1–11.2).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "test_grids.hpp"
+#include "urbanvec/vectorize/curve_smoothing.hpp"
+#include "urbanvec/vectorize/cycle_removal.hpp"
+#include "urbanvec/vectorize/intersection_simplification.hpp"
+#include "urbanvec/vectorize/road_connection.hpp"
+#include "urbanvec/vectorize/road_graph_build.hpp"
+#include "urbanvec/vectorize/road_smoothing.hpp"
+#include "urbanvec/vectorize/straightening.hpp"
+
+using namespace urbanvec;
+using namespace urbanvec::vectorize;
+using namespace urbanvec::vectorize::testing;
+
+namespace {
+
+std::vector<int> aliveNodes(const RoadGraph& g) {
+  std::vector<int> out;
+  for (size_t i = 0; i < g.nodes.size(); ++i)
+    if (g.nodes[i].alive) out.push_back(static_cast<int>(i));
+  return out;
+}
+
+int countDegree(const RoadGraph& g, int degree) {
+  int k = 0;
+  for (int i : aliveNodes(g)) k += g.degree(i) == degree;
+  return k;
+}
+
+/// A polyline graph a - m - b of secondary nodes with equal link lengths and angle `degrees` at m.
+RoadGraph bend(double degrees) {
+  RoadGraph g;
+  const double half = degrees * M_PI / 360.0;
+  const int a = g.addNode({-std::sin(half) * 3, std::cos(half) * 3}, NodeType::Secondary);
+  const int m = g.addNode({0, 0}, NodeType::Secondary);
+  const int b = g.addNode({std::sin(half) * 3, std::cos(half) * 3}, NodeType::Secondary);
+  g.link(a, m);
+  g.link(m, b);
+  return g;
+}
+
+}  // namespace
+
+TEST(RoadGraph, PlusShapedSecondaryCrossingGivesOneFourWayIntersection) {
+  auto cells = drawGrid({
+      "rrrsrrr",
+      "rrrsrrr",
+      "rrrsrrr",
+      "sssssss",
+      "rrrsrrr",
+      "rrrsrrr",
+      "rrrsrrr",
+  });
+  const RoadGraphBuild b = buildRoadGraph(cells, {});
+  EXPECT_EQ(countDegree(b.graph, 4), 1);
+  EXPECT_EQ(countDegree(b.graph, 3), 0);
+  EXPECT_EQ(countDegree(b.graph, 1), 4);
+  for (int i : aliveNodes(b.graph))
+    if (b.graph.degree(i) == 4) {
+      EXPECT_DOUBLE_EQ(b.graph.nodes[i].p.x, 3.5);
+      EXPECT_DOUBLE_EQ(b.graph.nodes[i].p.y, 3.5);
+      // Clockwise from north: N, E, S, W.
+      std::vector<double> az;
+      for (int j : b.graph.nodes[i].links) az.push_back(azimuth(b.graph.nodes[i].p, b.graph.nodes[j].p));
+      EXPECT_TRUE(std::is_sorted(az.begin(), az.end()));
+      EXPECT_NEAR(az[0], 0.0, 1e-12);
+    }
+}
+
+TEST(RoadGraph, StraightTwoWidePrimaryGivesOneCentrelineOnItsMiddleLine) {
+  auto cells = drawGrid({
+      "rrrrrrrrrr",
+      "PPPPPPPPPP",
+      "PPPPPPPPPP",
+      "rrrrrrrrrr",
+  });
+  const RoadGraphBuild b = buildRoadGraph(cells, {});
+  const std::vector<int> nodes = aliveNodes(b.graph);
+  ASSERT_EQ(nodes.size(), 9u);  // n - 1 for a road n = 10 patches long
+  for (int i : nodes) {
+    EXPECT_EQ(b.graph.nodes[i].type, NodeType::Primary);
+    EXPECT_DOUBLE_EQ(b.graph.nodes[i].p.y, 2.0);  // boundary between rows 1 and 2 (H = 4)
+    EXPECT_LE(b.graph.degree(i), 2);
+  }
+  EXPECT_EQ(countDegree(b.graph, 1), 2);
+  // Thesis variant: centre of the south-east neighbour, half a patch off the centreline.
+  auto cells2 = cells;
+  RoadGraphOptions thesis;
+  thesis.primaryNodeAtCorner = false;
+  const RoadGraphBuild t = buildRoadGraph(cells2, thesis);
+  for (int i : aliveNodes(t.graph)) EXPECT_DOUBLE_EQ(t.graph.nodes[i].p.y, 1.5);
+}
+
+TEST(RoadGraph, TwoByTwoRoadSquareIsOpened) {
+  // The square is cols 2-3, rows 2-3; the road enters at its south-west and leaves at its north-east.
+  auto cells = drawGrid({
+      "rrrrrr",
+      "rrrrrr",
+      "rrssss",
+      "ssssrr",
+      "rrrrrr",
+  });
+  const RoadGraphBuild b = buildRoadGraph(cells, {});
+  EXPECT_EQ(b.squaresOpened, 1u);
+  // NW is the first patch (N-W, N-E, S-E, S-W order) whose two outside neighbours are not road.
+  EXPECT_EQ(cells.at(2, 2), kRemovedRoad);
+  // No cycle is left and the road is still one piece: nodes = links + 1.
+  EXPECT_EQ(b.graph.aliveCount(), b.graph.linkCount() + 1);
+}
+
+TEST(RoadGraph, LongLinksAreSplitBelowTwoPatchWidths) {
+  RoadGraph g;
+  const int a = g.addNode({0, 0}, NodeType::Primary);
+  const int b = g.addNode({5, 0}, NodeType::Primary);
+  const int c = g.addNode({5, 2}, NodeType::Secondary);
+  g.link(a, b);
+  g.link(b, c);
+  const std::size_t added = subdivideLongLinks(g, 2.0);
+  EXPECT_EQ(added, 2u + 1u);  // 5 -> 3 parts, 2 -> 2 parts
+  for (size_t i = 0; i < g.nodes.size(); ++i)
+    for (int j : g.nodes[i].links) EXPECT_LT(distance(g.nodes[i].p, g.nodes[j].p), 2.0);
+  EXPECT_EQ(g.nodes.back().type, NodeType::Secondary);  // inserted on the mixed link: secondary
+}
+
+TEST(RoadGraph, IntersectionClusterCollapsesToItsMean) {
+  RoadGraph g;
+  // Two adjacent degree-3 nodes, each with two outside arms of two nodes (a one-node dead end would
+  // itself count as an intersection: "linked only to other intersections").
+  const int p = g.addNode({0, 0}, NodeType::Secondary), q = g.addNode({1, 0}, NodeType::Secondary);
+  g.link(p, q);
+  auto arm = [&](int from, Vec2 a) {
+    const int n1 = g.addNode(a, NodeType::Secondary);
+    g.link(from, n1);
+    g.link(n1, g.addNode(a * 2.0, NodeType::Secondary));
+  };
+  arm(p, {-1, 1});
+  arm(p, {-1, -1});
+  arm(q, {2, 1});
+  arm(q, {2, -1});
+  EXPECT_EQ(simplifyIntersectionClusters(g, true), 1u);
+  g.compact();
+  ASSERT_EQ(countDegree(g, 4), 1);
+  for (const RoadNode& n : g.nodes)
+    if (n.links.size() == 4) EXPECT_EQ(n.p, Vec2(0.5, 0));
+}
+
+TEST(Straightening, FitIsOrthogonalSoNorthSouthRoadsWork) {
+  Vec2 c, d;
+  EXPECT_NEAR(fitLine({{3, 0}, {3, 1}, {3, 2}, {3, 5}}, c, d), 0.0, 1e-12);
+  EXPECT_NEAR(std::fabs(d.y), 1.0, 1e-12);
+  EXPECT_NEAR(fitLine({{0, 0}, {1, 1}, {2, 0}}, c, d), std::sqrt(2.0 / 3.0), 1e-9);
+}
+
+TEST(Straightening, PairsWithSmallResidualAreSnappedOntoTheirLine) {
+  // A crossing whose east-west road meanders by a quarter patch.
+  RoadGraph g;
+  const int centre = g.addNode({0, 0.1}, NodeType::Secondary);
+  int prevE = centre, prevW = centre, prevN = centre;
+  for (int k = 1; k <= 6; ++k) {
+    const double wiggle = (k % 2 ? 0.25 : -0.2);
+    const int e = g.addNode({static_cast<double>(k), wiggle}, NodeType::Secondary);
+    const int w = g.addNode({-static_cast<double>(k), -wiggle}, NodeType::Secondary);
+    const int n = g.addNode({0.05 * k, static_cast<double>(k)}, NodeType::Secondary);
+    g.link(prevE, e);
+    g.link(prevW, w);
+    g.link(prevN, n);
+    prevE = e;
+    prevW = w;
+    prevN = n;
+  }
+  g.sortLinksClockwise();
+  const StraighteningStats s = straightenIntersections(g, {});
+  EXPECT_EQ(s.intersections, 1u);
+  EXPECT_GE(s.pairsSnapped, 1u);
+  // The east-west pair (best residual among the pairs) is on one line within 5 pw of the centre.
+  std::vector<Vec2> ew;
+  for (const RoadNode& n : g.nodes)
+    if (std::fabs(n.p.x) > 0.5 && std::fabs(n.p.x) <= 4.5 && std::fabs(n.p.y) < 1.0) ew.push_back(n.p);
+  ew.push_back(g.nodes[centre].p);
+  Vec2 c, d;
+  EXPECT_LT(fitLine(ew, c, d), 1e-9);
+  // Residual above the limit: nothing moves.
+  RoadGraph g2 = bend(90);
+  const int extra = g2.addNode({0, -3}, NodeType::Secondary);
+  g2.link(1, extra);
+  StraighteningOptions strict;
+  strict.maxResidual = 0.0;
+  const Vec2 before = g2.nodes[0].p;
+  EXPECT_EQ(straightenIntersections(g2, strict).pairsSnapped, 0u);
+  EXPECT_EQ(g2.nodes[0].p, before);
+}
+
+TEST(RoadSmoothing, DeadEndsIntersectionsAndConnectionNodesStayPut) {
+  auto cells = drawGrid({
+      "rrrrsrrrr",
+      "rrrrsrrrr",
+      "rrrrsrrrr",
+      "sssssrrrr",
+      "rrrrssrrr",
+      "rrrrrsrrr",
+      "rrrrrssss",
+      "rrrrrrrrr",
+  });
+  RoadGraph g = buildRoadGraph(cells, {}).graph;
+  g.nodes[3].psConnection = true;
+  const RoadGraph before = g;
+  RoadSmoothingOptions noSecondStraightening;
+  noSecondStraightening.straightAngle = 180.0;
+  smoothRoads(g, noSecondStraightening);
+  for (size_t i = 0; i < g.nodes.size(); ++i) {
+    const RoadNode& n = before.nodes[i];
+    if (n.links.size() != 2 || n.intersection || n.psConnection) EXPECT_EQ(g.nodes[i].p, n.p) << i;
+  }
+}
+
+TEST(Smoothing, StaircaseDiagonalRoadIsStraightWithinAQuarterCell) {
+  std::vector<std::string> rows = blank(24, 24);
+  // A 4-connected staircase from the north-west to the south-east.
+  for (int k = 0; k < 23; ++k) {
+    rows[k][k] = 's';
+    rows[k][k + 1] = 's';
+  }
+  rows[23][23] = 's';
+  auto cells = drawGrid(rows);
+  RoadGraph g = buildRoadGraph(cells, {}).graph;
+  smoothRoads(g, {});
+  smoothCurves(g, {});
+  std::vector<Vec2> pts;
+  for (const RoadNode& n : g.nodes)
+    if (n.alive) pts.push_back(n.p);
+  Vec2 c, d;
+  fitLine(pts, c, d);
+  EXPECT_NEAR(std::fabs(d.x), std::sqrt(0.5), 0.02);  // still the diagonal
+  for (const RoadNode& n : g.nodes) {
+    // Only the two fixed dead ends keep their staircase corner offset.
+    if (n.links.size() < 2) continue;
+    EXPECT_LE(std::fabs(cross(d, n.p - c)), 0.25) << n.p.x << "," << n.p.y;
+  }
+}
+
+TEST(Connection, SecondaryRoadMeetingAPrimaryIsLinkedToIt) {
+  auto cells = drawGrid({
+      "rrrrsrrrrr",
+      "rrrrsrrrrr",
+      "rrrrsrrrrr",
+      "PPPPPPPPPP",
+      "PPPPPPPPPP",
+      "rrrrrrrrrr",
+  });
+  RoadGraph g = buildRoadGraph(cells, {}).graph;
+  const RoadConnectionStats s = connectRoads(g, {});
+  EXPECT_EQ(s.connections, 1u);
+  // One connected network with one T intersection on the primary centreline.
+  EXPECT_EQ(g.aliveCount(), g.linkCount() + 1);
+  EXPECT_EQ(countDegree(g, 3), 1);
+  for (const RoadNode& n : g.nodes)
+    if (n.links.size() == 3) EXPECT_EQ(n.type, NodeType::Primary);
+}
+
+TEST(CycleRemoval, ShortCycleLosesItsShortestSegmentUntilNoneIsLeft) {
+  // A 2x3 block ring (14 nodes) and a 3x3 block ring (16 nodes) sharing the middle road.
+  auto cells = drawGrid({
+      "rrrrrrrrrrr",
+      "rssssssssrr",
+      "rsrrsrrrsrr",
+      "rsrrsrrrsrr",
+      "rsrrsrrrsrr",
+      "rssssssssrr",
+      "rrrrrrrrrrr",
+  });
+  RoadGraph g = buildRoadGraph(cells, {}).graph;
+  ASSERT_EQ(boundedRoadFaces(g).size(), 2u);
+  const CycleRemovalStats s = removeShortCycles(g, {});
+  EXPECT_EQ(s.segmentsRemoved, 1u);
+  // The shortest chain of the 14-node face was the shared middle road: what remains is the outer ring
+  // of 22 nodes, above the limit.
+  const auto faces = boundedRoadFaces(g);
+  ASSERT_EQ(faces.size(), 1u);
+  EXPECT_EQ(faces[0].size(), 22u);
+  for (const auto& f : faces) EXPECT_GT(f.size(), 15u);
+}
+
+TEST(IntersectionSimplification, SharpDeadEndsAndCloseNodesGo) {
+  RoadGraph g;
+  const int x = g.addNode({0, 0}, NodeType::Secondary);
+  const int e = g.addNode({1, 0}, NodeType::Secondary), w = g.addNode({-1, 0}, NodeType::Secondary);
+  const int s = g.addNode({0, -1}, NodeType::Secondary);
+  const int e2 = g.addNode({2, 0}, NodeType::Secondary), w2 = g.addNode({-2, 0}, NodeType::Secondary);
+  const int s2 = g.addNode({0, -2}, NodeType::Secondary);
+  g.link(e, e2);
+  g.link(w, w2);
+  g.link(s, s2);
+  const int sharp = g.addNode({0.8, 0.6}, NodeType::Secondary);  // 37 degrees from the east road
+  const int close = g.addNode({0, 0.4}, NodeType::Secondary);    // 0.4 pw north, leads on
+  const int far = g.addNode({0, 1.5}, NodeType::Secondary);
+  for (int n : {e, w, s, sharp, close}) g.link(x, n);
+  g.link(close, far);
+  const IntersectionSimplificationStats st = simplifyIntersections(g, {});
+  EXPECT_EQ(st.deadEndsRemoved, 1u);
+  EXPECT_EQ(st.nodesContracted, 1u);
+  // The crossing keeps four arms, the northern one now linked straight to `far`.
+  ASSERT_EQ(countDegree(g, 4), 1);
+  for (const RoadNode& n : g.nodes) {
+    EXPECT_NE(n.p, Vec2(0.8, 0.6));
+    EXPECT_NE(n.p, Vec2(0, 0.4));
+  }
+}
+
+TEST(CurveSmoothing, InsertsThreeTwoOneOrNoNodesPerSideByAngle) {
+  const CurveSmoothingOptions defaults;
+  EXPECT_EQ(defaults.passes, 8);
+  for (const auto& [angle, perSide] : std::vector<std::pair<double, int>>{{80, 3}, {120, 2}, {150, 1}, {170, 0}}) {
+    RoadGraph g = bend(angle);
+    const RoadGraph original = g;
+    CurveSmoothingOptions noPasses;
+    noPasses.passes = 0;
+    const CurveSmoothingStats s = smoothCurves(g, noPasses);
+    EXPECT_EQ(s.nodesInserted, static_cast<size_t>(2 * perSide)) << angle;
+    // Inserted nodes lie on the original links.
+    for (size_t i = 3; i < g.nodes.size(); ++i) {
+      const Vec2 p = g.nodes[i].p;
+      const double onA = std::fabs(cross(original.nodes[0].p - original.nodes[1].p, p - original.nodes[1].p));
+      const double onB = std::fabs(cross(original.nodes[2].p - original.nodes[1].p, p - original.nodes[1].p));
+      EXPECT_LT(std::min(onA, onB), 1e-9);
+    }
+    RoadGraph h = bend(angle);
+    EXPECT_EQ(smoothCurves(h, defaults).passes, 8);
+  }
+}

@@ -1,0 +1,156 @@
+// Stages A2, A3, A4.8 and A5 on small drawn grids with known answers (spec §11.1).
+#include <gtest/gtest.h>
+
+#include "test_grids.hpp"
+#include "urbanvec/vectorize/parcel_loading.hpp"
+#include "urbanvec/vectorize/patch_cleaning.hpp"
+#include "urbanvec/vectorize/perimeters.hpp"
+#include "urbanvec/vectorize/raw_blocks.hpp"
+
+using namespace urbanvec;
+using namespace urbanvec::vectorize;
+using namespace urbanvec::vectorize::testing;
+
+TEST(RawBlocks, EnclosedLandIsInternalWithItsUnusedPatchesAndBorderLandIsExternalWithout) {
+  const auto cells = drawGrid({
+      "rr.r.....",
+      "rsssssss.",
+      "rsr.rwrs.",
+      "rsrr.wrs.",
+      "rsssssss.",
+      "rr..r....",
+  });
+  const RawBlocks rb = buildRawBlocks(cells, {});
+  int internal = 0, external = 0;
+  for (const SimBlock& b : rb.blocks) {
+    (b.internal ? internal : external)++;
+    for (int i : b.patches) {
+      const int c = i % cells.width, r = i / cells.width;
+      if (b.internal) EXPECT_FALSE(c == 0 || r == 0 || c == cells.width - 1 || r == cells.height - 1);
+      else EXPECT_NE(cells.cells[i], static_cast<std::uint8_t>(LandUse::Unused));
+    }
+  }
+  // Inside the ring, water splits the enclosed land into two internal blocks ("two or more blocks
+  // surrounded by the same roads"); the left one keeps its unused patch as undeveloped land.
+  EXPECT_EQ(internal, 2);
+  const SimBlock& left = rb.blocks[rb.blockOf.at(2, 2)];
+  EXPECT_TRUE(left.internal);
+  EXPECT_EQ(left.area, 6.0);
+  EXPECT_EQ(left.undevelopedArea, 2.0);
+  EXPECT_TRUE(left.touchesWater);
+  EXPECT_EQ(rb.blockOf.at(5, 2), -1);  // water
+  // Outside: the residential patches touching the border form external blocks; unused patches are in none.
+  EXPECT_GE(external, 2);
+  EXPECT_EQ(rb.blockOf.at(2, 0), -1);
+  EXPECT_FALSE(rb.blocks[rb.blockOf.at(0, 0)].internal);
+  // No two blocks are 4-adjacent.
+  for (int r = 0; r < cells.height; ++r)
+    for (int c = 0; c + 1 < cells.width; ++c) {
+      const int a = rb.blockOf.at(c, r), b = rb.blockOf.at(c + 1, r);
+      if (a >= 0 && b >= 0) EXPECT_EQ(a, b);
+    }
+}
+
+TEST(RawBlocks, ReservedIsExcludedOnlyWhenAsked) {
+  const auto cells = drawGrid({"sssss", "srxrs", "sssss"});
+  EXPECT_EQ(buildRawBlocks(cells, {}).blocks.size(), 2u);
+  RawBlockOptions paper;
+  paper.excludeReserved = false;
+  EXPECT_EQ(buildRawBlocks(cells, paper).blocks.size(), 1u);
+}
+
+TEST(PatchCleaning, RedundantSecondaryStripBesidePrimaryIsRemoved) {
+  auto cells = drawGrid({
+      "rrrrrrrrrr",
+      "rrssssssrr",
+      "PPPPPPPPPP",
+      "PPPPPPPPPP",
+      "rrrrrrrrrr",
+  });
+  const PatchCleaningStats s = cleanIntersectionPatches(cells);
+  EXPECT_EQ(s.removedPatches, 6u);
+  for (int c = 2; c < 8; ++c) EXPECT_EQ(cells.at(c, 1), kRemovedRoad);
+}
+
+TEST(PatchCleaning, SecondaryRoadLeavingThePrimaryKeepsOneShortestPath) {
+  auto cells = drawGrid({
+      "rrrrsrrrrr",
+      "rrrrsrrrrr",
+      "rrrrsrrrrr",
+      "rrssssrrrr",
+      "PPPPPPPPPP",
+      "PPPPPPPPPP",
+  });
+  cleanIntersectionPatches(cells);
+  const auto sec = static_cast<std::uint8_t>(LandUse::SecondaryRoad);
+  // The road going north survives, joined to the primary by the patch right below it.
+  for (int r = 0; r <= 3; ++r) EXPECT_EQ(cells.at(4, r), sec) << "row " << r;
+  // The sideways stubs hugging the primary are redundant.
+  EXPECT_EQ(cells.at(2, 3), kRemovedRoad);
+  EXPECT_EQ(cells.at(3, 3), kRemovedRoad);
+  EXPECT_EQ(cells.at(5, 3), kRemovedRoad);
+}
+
+TEST(Perimeters, LinesRunBetweenUndevelopedLandAndExternalBlocksAndEndAtRoads) {
+  // An external residential block at the west border; unused land to its north-east.
+  auto cells = drawGrid({
+      "rrr......",
+      "rrr......",
+      "rrrr.....",
+      "sssssssss",
+      "rrrrrrrrr",
+  });
+  const RawBlocks rb = buildRawBlocks(cells, {});
+  RoadGraph g;
+  const PerimeterStats s = addExternalPerimeters(g, cells, rb.blockOf, rb.blocks, {});
+  EXPECT_EQ(s.closedLoops, 0u);
+  // One line around the north-west block (grid border included) and one around the southern strip.
+  ASSERT_EQ(s.lines, 2u);
+  // Every line ends where the perimeter meets the road: a patch beside the end vertex is road.
+  int ends = 0;
+  for (size_t i = 0; i < g.nodes.size(); ++i) {
+    if (g.degree(static_cast<int>(i)) != 1) continue;
+    ++ends;
+    const int cc = static_cast<int>(g.nodes[i].p.x), rr = cells.height - static_cast<int>(g.nodes[i].p.y);
+    bool besideRoad = false;
+    for (int dc : {-1, 0})
+      for (int dr : {-1, 0})
+        besideRoad |= cells.inside(cc + dc, rr + dr) && isRoadCode(cells.at(cc + dc, rr + dr));
+    EXPECT_TRUE(besideRoad) << "end at vertex " << cc << "," << rr;
+  }
+  EXPECT_EQ(ends, 4);
+  // The lines follow patch edges: every link is one patch edge long and axis-aligned.
+  for (size_t i = 0; i < g.nodes.size(); ++i)
+    for (int j : g.nodes[i].links) EXPECT_DOUBLE_EQ(distance(g.nodes[i].p, g.nodes[j].p), 1.0);
+  for (const RoadNode& n : g.nodes) EXPECT_EQ(n.type, NodeType::Perimeter);
+}
+
+TEST(ParcelLoading, ParcelsJoinTheBlockOfTheirFirstPatchAndTakeTableValues) {
+  VectorizeInput in = drawInput({
+      "sssss",
+      "srrrs",
+      "srrrs",
+      "sssss",
+  });
+  in.parcelIds = Grid<std::int32_t>(5, 4, 0);
+  in.parcelIds.at(1, 1) = 7;
+  in.parcelIds.at(2, 1) = 7;
+  in.parcelIds.at(1, 2) = 9;
+  in.parcelIds.at(0, 0) = 11;  // first patch on the road: attached to nothing
+  in.density = Grid<float>(5, 4, 2.5f);
+  in.parcelTable = {{7, LandUse::Commercial, 42.0, 2}};
+  RawBlocks rb = buildRawBlocks(in.landUse, {});
+  const ParcelLoading pl = loadParcels(in, rb.blockOf, rb.blocks);
+  ASSERT_EQ(pl.parcels.size(), 3u);
+  EXPECT_EQ(pl.parcels[0].id, 7);
+  EXPECT_EQ(pl.parcels[0].use, LandUse::Commercial);
+  EXPECT_DOUBLE_EQ(pl.parcels[0].population, 42.0);
+  EXPECT_EQ(pl.parcels[0].simBlock, rb.blockOf.at(1, 1));
+  EXPECT_EQ(pl.parcels[1].id, 9);
+  EXPECT_EQ(pl.parcels[1].use, LandUse::Residential);  // derived: majority of its patches
+  EXPECT_DOUBLE_EQ(pl.parcels[1].population, 2.5);     // derived: density sum
+  EXPECT_EQ(pl.parcels[2].simBlock, -1);
+  EXPECT_EQ(pl.unattached, 1u);
+  EXPECT_EQ(pl.derivedFromRaster, 2u);
+  EXPECT_EQ(rb.blocks[rb.blockOf.at(1, 1)].parcels, (std::vector<int>{0, 1}));
+}
