@@ -6,7 +6,7 @@ PACKAGES=(
   build-essential cmake ninja-build pkg-config git
   libgdal-dev gdal-bin python3-gdal libgeos-dev libproj-dev proj-bin proj-data
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev libeigen3-dev
-  nlohmann-json3-dev libgtest-dev googletest sqlite3 python3 python3-numpy
+  nlohmann-json3-dev libgtest-dev googletest sqlite3 python3 python3-numpy jq
   qgis python3-qgis qgis-providers grass-core xvfb xauth zip clang-format
 )
 

@@ -2,7 +2,7 @@
 // CGAL's interior straight skeleton. Kept in one translation unit because CGAL is slow to compile.
 #include "urbanvec/vectorize/spine_skeleton.hpp"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Polygon_with_holes_2.h>
 #include <CGAL/create_straight_skeleton_from_polygon_with_holes_2.h>
 
@@ -12,7 +12,9 @@ namespace urbanvec::vectorize::parcels {
 
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+// The exact-construction kernel: with the inexact one, CGAL 5.5 crashes (MergeCoincidentNodes) on
+// near-degenerate real blocks.
+using Kernel = CGAL::Exact_predicates_exact_constructions_kernel;
 using CgalPolygon = CGAL::Polygon_2<Kernel>;
 using CgalPolygonWithHoles = CGAL::Polygon_with_holes_2<Kernel>;
 
@@ -45,6 +47,28 @@ CgalPolygon toCgalRing(const Ring& ring, bool counterClockwise) {
   return polygon;
 }
 
+/// CGAL's skeleton builder requires every hole strictly inside the outer ring and disjoint from the
+/// other holes; a hole touching the outline at one vertex (valid for GEOS, common in real blocks)
+/// makes it crash. Such shapes go to the Zhang-Suen fallback instead.
+bool holesStrictlyInside(const CgalPolygonWithHoles& shape) {
+  std::vector<const CgalPolygon*> rings{&shape.outer_boundary()};
+  for (const CgalPolygon& hole : shape.holes()) {
+    for (const auto& p : hole.vertices())
+      if (shape.outer_boundary().bounded_side(p) != CGAL::ON_BOUNDED_SIDE) return false;
+    rings.push_back(&hole);
+  }
+  for (size_t a = 0; a < rings.size(); ++a)
+    for (size_t b = a + 1; b < rings.size(); ++b) {
+      if (a > 0)
+        for (const auto& p : rings[b]->vertices())
+          if (rings[a]->bounded_side(p) != CGAL::ON_UNBOUNDED_SIDE) return false;
+      for (auto ea = rings[a]->edges_begin(); ea != rings[a]->edges_end(); ++ea)
+        for (auto eb = rings[b]->edges_begin(); eb != rings[b]->edges_end(); ++eb)
+          if (CGAL::do_intersect(*ea, *eb)) return false;
+    }
+  return true;
+}
+
 }  // namespace
 
 SpineGraph straightSkeletonGraph(const Polygon& polygon) {
@@ -56,6 +80,7 @@ SpineGraph straightSkeletonGraph(const Polygon& polygon) {
     CgalPolygon hole = toCgalRing(h, false);
     if (hole.size() >= 3) shape.add_hole(hole);
   }
+  if (!holesStrictlyInside(shape)) return graph;
   auto skeleton = CGAL::create_interior_straight_skeleton_2(shape, Kernel());
   if (!skeleton) return graph;
   std::map<int, int> nodeOf;

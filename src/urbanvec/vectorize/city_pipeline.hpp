@@ -1,0 +1,47 @@
+// Stages C-E of shared/specs/sexton-vectorizer.md §1 joined to the road network of part 1: pavement
+// and blocks (part 2, blocks_pipeline), then spines, parcels, land use and population (part 3,
+// parcels_pipeline). This file adapts one part's output to the next part's input and writes the
+// `pavement`, `blocks`, `water`, `spines`, `parcels` and `vectorize_report` layers of CONVENTIONS.md.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "urbanvec/core/grid.hpp"
+#include "urbanvec/core/layer.hpp"
+#include "urbanvec/core/progress.hpp"
+#include "urbanvec/vectorize/blocks_pipeline.hpp"
+#include "urbanvec/vectorize/parcels_pipeline.hpp"
+#include "urbanvec/vectorize/vectorize_input.hpp"
+
+namespace urbanvec::vectorize {
+
+struct CityOptions {
+  BlocksOptions blocks;            ///< stages C, D1-D5
+  parcels::ParcelsOptions parcels;  ///< stages D6, E1-E6
+  /// Width of the band around the pavement within which a block edge counts as road-facing (E2
+  /// constraint 2), in cells. [INFERENCE] Only absorbs floating-point noise between the block outline
+  /// and the pavement it was cut from.
+  double roadFacingTolerance = 1e-3;
+};
+
+struct CityResult {
+  BlocksResult blocks;
+  std::vector<parcels::ParcelBlock> parcelBlocks;  ///< the part 3 input, aligned with blocks.blockInfo
+  parcels::ParcelsResult parcels;
+  /// pavement, blocks, water, spines, parcels, vectorize_report (world coordinates).
+  std::vector<Layer> layers;
+};
+
+/// The simulated side of one vector block: its matched simulated blocks merged (spec D5).
+parcels::SimBlockSummary summarizeSimulatedBlocks(const std::vector<int>& simBlockIndices,
+                                                  const std::vector<SimBlock>& blocks,
+                                                  const std::vector<SimParcel>& parcels);
+
+/// Runs C -> D5 then D6 -> E6 on part 1's output. `cells`, `blocks` and `simParcels` are
+/// VectorizeResult's A2-A5 data; `network` its road network; `grid` the input frame.
+CityResult vectorizeCity(const RoadNetwork& network, const Grid<std::uint8_t>& cells,
+                         const std::vector<SimBlock>& blocks, const std::vector<SimParcel>& simParcels,
+                         const GridSpec& grid, const CityOptions& options, const Progress& progress = {});
+
+}  // namespace urbanvec::vectorize
