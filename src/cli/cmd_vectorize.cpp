@@ -32,13 +32,16 @@ app::CommandSpec spec() {
   const vectorize::VectorizeOptions d;
   app::CommandSpec s;
   s.name = "vectorize";
-  s.summary = "Turns gridded urban land use into a vector road network (roads, road_nodes).";
+  s.summary = "Turns gridded urban land use into a vector city: roads, pavement, blocks, spines, parcels.";
   s.description =
-      "Implements the road half of Sexton's vectorizer: simulated blocks by flood fill, extraneous intersection "
+      "Implements Sexton's vectorizer: simulated blocks by flood fill, extraneous intersection "
       "patch cleaning, a road graph on 1-wide secondary and 2-wide primary road cells, external block perimeters, "
       "intersection straightening, smoothing, primary/secondary connection, short-cycle removal, intersection "
-      "simplification and curve smoothing. Writes the layers roads (one LineString per segment between "
-      "intersections, dead ends or class changes; perimeters as road_class=perimeter) and road_nodes, in the CRS "
+      "simplification and curve smoothing; then curbs, pavement and culs-de-sac, blocks (internal, external, water "
+      "split, matched to the simulated blocks), spines, parcels by spine and regular subdivision with land use "
+      "and population (best of -tries per block, blocks in parallel). Writes the layers roads (one LineString per "
+      "segment between intersections, dead ends or class changes; perimeters as road_class=perimeter), road_nodes, "
+      "pavement, blocks, water, spines, parcels and the table vectorize_report, in the CRS "
       "of the land-use raster. All rasters given together must share size, geotransform and CRS. Distances are "
       "in cells (patch widths). See docs/vectorize.md.";
   s.group = "Vectorization";
@@ -58,6 +61,21 @@ app::CommandSpec spec() {
                      "unused), for rasters from other simulations or land-cover products.")
                   .withRole(Role::InputFile));
   o.push_back(app::seedOption());
+  o.push_back(option("-tries", ValueType::Integer, "<n>",
+                     "Generate-and-test iterations per block; the lowest-cost parcelling is kept (E5).")
+                  .byDefault(std::to_string(vectorize::parcels::ParcelsOptions{}.tries))
+                  .atLeast(1));
+  o.push_back(option("-spine-method", ValueType::Choice, "<method>",
+                     "How block spines are found (D6): the thesis's Zhang-Suen thinning or CGAL's straight skeleton.")
+                  .oneOf({"zhang-suen", "skeleton"})
+                  .byDefault(std::string(vectorize::parcels::spineMethodName(vectorize::parcels::SpineOptions{}.method))));
+  o.push_back(option("-threads", ValueType::Integer, "<n>",
+                     "Worker threads for the block stages (0 = all cores); the output does not depend on it.")
+                  .byDefault("0")
+                  .atLeast(0)
+                  .isAdvanced());
+  o.push_back(option("-roads-only", ValueType::Flag, "",
+                     "Stop after the road network (stages A-B): write only roads and road_nodes."));
   for (const app::OptionSpec& v : app::vectorOutputOptions()) o.push_back(v);
   o.push_back(option("-debug-stages", ValueType::String, "<dir>",
                      "Write the road graph after each stage (links and nodes layers per stage) to <dir>/stages.gpkg.")
@@ -151,7 +169,7 @@ app::CommandSpec spec() {
                   .isAdvanced());
   s.examples = {"urbanvec vectorize -density density.tif -parcels parcels.tif -parcel-table parcels.csv landuse.tif city.gpkg",
                 "urbanvec vectorize -classes corine_classes.csv -debug-stages stages landcover.tif roads.gpkg"};
-  s.outputLayers = {"roads", "road_nodes"};
+  s.outputLayers = {"roads", "road_nodes", "pavement", "blocks", "water", "spines", "parcels", "vectorize_report"};
   return s;
 }
 
@@ -187,6 +205,11 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
     }
   }
   options.outputSimplification = args.real("-simplify");
+  options.roadsOnly = args.flag("-roads-only");
+  options.city.parcels.seed = static_cast<std::uint64_t>(args.integer("-seed"));
+  options.city.parcels.tries = static_cast<int>(args.integer("-tries"));
+  options.city.parcels.threads = static_cast<int>(args.integer("-threads"));
+  options.city.parcels.spine.method = *vectorize::parcels::parseSpineMethod(args.str("-spine-method"));
   const bool debug = args.given("-debug-stages");
   options.keepStageGraphs = debug;
 

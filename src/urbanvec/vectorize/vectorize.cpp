@@ -72,11 +72,13 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
   result.cells = input.landUse;
   RoadGraph& graph = result.roads;
 
-  // Stage runner: progress sub-range, timing, per-stage peak memory, graph snapshot.
+  // Stage runner: progress sub-range, timing, per-stage peak memory, graph snapshot. The road stages
+  // take the first 30% of the progress range when stages C-E follow.
+  const Progress roadProgress = options.roadsOnly ? progress : subProgress(progress, 0.0, 0.3);
   double done = 0;
   auto run = [&](const std::string& id, const std::string& name, double weight, bool graphStage,
                  const std::function<std::string(const Progress&)>& body) {
-    const Progress sub = subProgress(progress, done, std::min(1.0, done + weight));
+    const Progress sub = subProgress(roadProgress, done, std::min(1.0, done + weight));
     reportProgress(sub, 0.0, name);
     resetPeakMemory();
     const auto t0 = std::chrono::steady_clock::now();
@@ -188,6 +190,23 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
     for (Layer& l : layers) result.layers.push_back(std::move(l));
     return counts(noded, " crossings noded, ", segments, " road segments");
   });
+  if (!options.roadsOnly) {
+    const auto t0 = std::chrono::steady_clock::now();
+    resetPeakMemory();
+    result.city = vectorizeCity(result.network, result.cells, result.blocks, result.parcels, input.spec, options.city,
+                                subProgress(progress, 0.3, 1.0));
+    StageReport report;
+    report.id = "C-E";
+    report.name = "pavement, blocks, spines, parcels";
+    report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    report.peakMemoryKb = peakMemoryKb();
+    std::size_t parcelCount = 0;
+    for (const auto& b : result.city.parcels.blocks) parcelCount += b.parcels.size();
+    report.summary = counts(result.city.blocks.blocks.features.size(), " blocks, ", parcelCount, " parcels, ",
+                            result.city.blocks.stats.failsafeUses, " failsafe matches");
+    result.stages.push_back(report);
+    for (const Layer& l : result.city.layers) result.layers.push_back(l);
+  }
   reportProgress(progress, 1.0, "done");
   return result;
 }

@@ -8,6 +8,7 @@
 
 #include "urbanvec/core/layer.hpp"
 #include "urbanvec/core/progress.hpp"
+#include "urbanvec/vectorize/city_pipeline.hpp"
 #include "urbanvec/vectorize/curve_smoothing.hpp"
 #include "urbanvec/vectorize/cycle_removal.hpp"
 #include "urbanvec/vectorize/intersection_simplification.hpp"
@@ -41,6 +42,10 @@ struct VectorizeOptions {
   /// segments, in pw (0 = every graph node becomes a vertex). The graph keeps its nodes; this removes
   /// the sub-cell wiggle left by smoothing a staircase, which otherwise dominates the turning per km.
   double outputSimplification = 0.3;
+  /// Stages C-E (pavement, blocks, spines, parcels, land use, population).
+  CityOptions city;
+  /// Stop after the road network (stages A-B): only roads and road_nodes are produced.
+  bool roadsOnly = false;
   /// Keep a copy of the road graph after every graph stage (for -debug-stages).
   bool keepStageGraphs = false;
 };
@@ -69,7 +74,10 @@ struct VectorizeResult {
   /// (stage id + name, graph) after each graph stage when keepStageGraphs.
   std::vector<std::pair<std::string, RoadGraph>> stageGraphs;
   std::vector<std::string> warnings;
-  /// Output layers in world coordinates: roads, road_nodes.
+  /// Stages C-E (empty when roadsOnly).
+  CityResult city;
+  /// Output layers in world coordinates: roads, road_nodes, then (unless roadsOnly) pavement, blocks,
+  /// water, spines, parcels, vectorize_report.
   std::vector<Layer> layers;
 };
 
