@@ -54,7 +54,8 @@ TEST(Pipeline, SmallCityGivesCleanConnectedRoadsCoveringEveryRoadCell) {
     return true;
   };
   const VectorizeResult r = vectorize::vectorize(in, {}, progress);
-  ASSERT_EQ(r.layers.size(), 2u);
+  // Later stages add layers; roads and road_nodes come first.
+  ASSERT_GE(r.layers.size(), 2u);
   const Layer& roads = r.layers[0];
   const Layer& nodes = r.layers[1];
   EXPECT_EQ(roads.name, "roads");
@@ -97,7 +98,9 @@ TEST(Pipeline, SmallCityGivesCleanConnectedRoadsCoveringEveryRoadCell) {
   // Per-stage reports for A2..B6 and the output.
   std::vector<std::string> ids;
   for (const StageReport& s : r.stages) ids.push_back(s.id);
-  EXPECT_EQ(ids, (std::vector<std::string>{"A2", "A3", "A4", "A4.8", "A5", "B1", "B2", "B3", "B4", "B5", "B6", "F"}));
+  const std::vector<std::string> roadStages{"A2", "A3", "A4", "A4.8", "A5", "B1", "B2", "B3", "B4", "B5", "B6"};
+  ASSERT_GE(ids.size(), roadStages.size());
+  EXPECT_EQ(std::vector<std::string>(ids.begin(), ids.begin() + roadStages.size()), roadStages);
 }
 
 TEST(Pipeline, SameInputGivesIdenticalOutput) {
