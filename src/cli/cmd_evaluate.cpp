@@ -19,12 +19,6 @@ using app::option;
 using app::Role;
 using app::ValueType;
 
-std::string text(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", v);
-  return buffer;
-}
-
 /// One of the three layers both cities may have.
 struct LayerRole {
   const char* name;  ///< "roads"
@@ -85,13 +79,13 @@ app::CommandSpec spec() {
           .isAdvanced());
   s.options.push_back(option("-min-iou", ValueType::Real, "<ratio>",
                              "Smallest intersection over union for a truth block to count as matched.")
-                          .byDefault(text(defaults.blockMatchIoU))
+                          .byDefault(app::numberText(defaults.blockMatchIoU))
                           .atLeast(1e-6)
                           .atMost(1)
                           .isAdvanced());
   s.options.push_back(option("-sample-spacing", ValueType::Real, "<cells>",
                              "Spacing of the points sampled along road centrelines for the distances.")
-                          .byDefault(text(defaults.sampleSpacingCells))
+                          .byDefault(app::numberText(defaults.sampleSpacingCells))
                           .withUnit("cells")
                           .atLeast(1e-3)
                           .isAdvanced());

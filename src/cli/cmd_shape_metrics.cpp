@@ -20,12 +20,6 @@ using app::option;
 using app::Role;
 using app::ValueType;
 
-std::string text(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.10g", v);
-  return buffer;
-}
-
 const char* const kMetricFields[] = {"fractal_dimension",   "slope_a",    "sigma",
                                      "enclosed_area_ratio", "base_chord", "valid"};
 
@@ -67,7 +61,7 @@ app::CommandSpec spec() {
                   .atLeast(3)
                   .atMost(64));
   o.push_back(option("-k", ValueType::Real, "<factor>", "Ratio between successive chord lengths.")
-                  .byDefault(text(d.walk.scaleFactor))
+                  .byDefault(app::numberText(d.walk.scaleFactor))
                   .atLeast(1.01));
   o.push_back(
       option("-step", ValueType::Real, "<length>",

@@ -22,12 +22,6 @@ using app::Role;
 using app::ValueType;
 
 /// A default taken from the options struct, printed without trailing zeros.
-std::string text(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
 app::CommandSpec spec() {
   const vectorize::VectorizeOptions d;
   app::CommandSpec s;
@@ -93,69 +87,69 @@ app::CommandSpec spec() {
                   .byDefault("corner")
                   .isAdvanced());
   o.push_back(option("-max-link", ValueType::Real, "<cells>", "Links this long or longer are subdivided (A4.6).")
-                  .byDefault(text(d.roadGraph.maxLinkLength))
+                  .byDefault(app::numberText(d.roadGraph.maxLinkLength))
                   .withUnit("cells")
                   .atLeast(0.1)
                   .isAdvanced());
   o.push_back(option("-straighten-window", ValueType::Real, "<cells>",
                      "Intersection straightening fits nodes within this distance (B1).")
-                  .byDefault(text(d.straightening.window))
+                  .byDefault(app::numberText(d.straightening.window))
                   .withUnit("cells")
                   .atLeast(0)
                   .isAdvanced());
   o.push_back(option("-straighten-residual", ValueType::Real, "<cells>",
                      "Largest residual norm of a fit that is snapped (B1).")
-                  .byDefault(text(d.straightening.maxResidual))
+                  .byDefault(app::numberText(d.straightening.maxResidual))
                   .withUnit("cells")
                   .atLeast(0)
                   .isAdvanced());
   o.push_back(option("-smooth-passes", ValueType::Integer, "<n>", "Road smoothing passes (B2).")
-                  .byDefault(text(d.roadSmoothing.passes))
+                  .byDefault(app::numberText(d.roadSmoothing.passes))
                   .atLeast(0)
                   .isAdvanced());
   o.push_back(option("-perimeter-passes", ValueType::Integer, "<n>", "Smoothing passes of perimeter lines (B2, Q8).")
-                  .byDefault(text(d.roadSmoothing.perimeterPasses))
+                  .byDefault(app::numberText(d.roadSmoothing.perimeterPasses))
                   .atLeast(0)
                   .isAdvanced());
   o.push_back(option("-straight-angle", ValueType::Real, "<degrees>",
                      "Road pairs straighter than this re-straighten their intersection (B2).")
-                  .byDefault(text(d.roadSmoothing.straightAngle))
+                  .byDefault(app::numberText(d.roadSmoothing.straightAngle))
                   .withUnit("degrees")
                   .atLeast(90)
                   .atMost(180)
                   .isAdvanced());
   o.push_back(option("-cycle-nodes", ValueType::Integer, "<n>", "Road cycles of at most this many nodes lose a segment (B4).")
-                  .byDefault(text(d.cycles.maxCycleNodes))
+                  .byDefault(app::numberText(d.cycles.maxCycleNodes))
                   .atLeast(0)
                   .isAdvanced());
   o.push_back(option("-dead-end-angle", ValueType::Real, "<degrees>",
                      "Dead ends at an intersection closer than this angle to another road are removed (B5).")
-                  .byDefault(text(d.intersections.deadEndAngle))
+                  .byDefault(app::numberText(d.intersections.deadEndAngle))
                   .withUnit("degrees")
                   .atLeast(0)
                   .atMost(180)
                   .isAdvanced());
   o.push_back(option("-primary-close", ValueType::Real, "<cells>",
                      "Primary nodes closer than this to an intersection are merged into it (B5).")
-                  .byDefault(text(d.intersections.primaryDistance))
+                  .byDefault(app::numberText(d.intersections.primaryDistance))
                   .withUnit("cells")
                   .atLeast(0)
                   .isAdvanced());
   o.push_back(option("-secondary-close", ValueType::Real, "<cells>",
                      "Secondary nodes closer than this to an intersection are merged into it (B5).")
-                  .byDefault(text(d.intersections.secondaryDistance))
+                  .byDefault(app::numberText(d.intersections.secondaryDistance))
                   .withUnit("cells")
                   .atLeast(0)
                   .isAdvanced());
   o.push_back(option("-curve-passes", ValueType::Integer, "<n>", "Curve smoothing passes (B6).")
-                  .byDefault(text(d.curves.passes))
+                  .byDefault(app::numberText(d.curves.passes))
                   .atLeast(0)
                   .isAdvanced());
   o.push_back(option("-curve-angles", ValueType::Real, "<a3> <a2> <a1>",
                      "Bends sharper than these interior angles get 3, 2, 1 extra nodes per side (B6).")
                   .values(3)
-                  .byDefault(text(d.curves.angleThreeNodes) + " " + text(d.curves.angleTwoNodes) + " " +
-                             text(d.curves.angleOneNode))
+                  .byDefault(app::numberText(d.curves.angleThreeNodes) + " " + app::numberText(d.curves.angleTwoNodes) + " " +
+                             app::numberText(d.curves.angleOneNode))
                   .withUnit("degrees")
                   .atLeast(0)
                   .atMost(180)
@@ -163,7 +157,7 @@ app::CommandSpec spec() {
   o.push_back(option("-simplify", ValueType::Real, "<cells>",
                      "Tolerance of the topology-preserving simplification of the output segments (0 = keep every "
                      "graph node).")
-                  .byDefault(text(d.outputSimplification))
+                  .byDefault(app::numberText(d.outputSimplification))
                   .withUnit("cells")
                   .atLeast(0)
                   .isAdvanced());

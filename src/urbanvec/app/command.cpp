@@ -179,6 +179,12 @@ void printTopHelp(std::ostream& out) {
 
 }  // namespace
 
+std::string numberText(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.10g", value);
+  return buffer;
+}
+
 bool ParsedArgs::has(const std::string& name) const {
   auto it = values_.find(name);
   return it != values_.end() && !it->second.empty();

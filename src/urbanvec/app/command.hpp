@@ -56,6 +56,9 @@ struct OptionSpec {
   OptionSpec& isAdvanced() { advanced = true; return *this; }
 };
 
+/// A number as option-default text: up to 10 significant digits, no trailing zeros ("0.3", "1e-06").
+std::string numberText(double value);
+
 /// Starts an option declaration; flags take no value, every other type one value unless values(n).
 inline OptionSpec option(std::string name, ValueType type, std::string metavar, std::string help) {
   OptionSpec o;
