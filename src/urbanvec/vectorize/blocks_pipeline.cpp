@@ -18,7 +18,7 @@ constexpr double kPi = 3.14159265358979323846;
 Ring ringToWorld(const Ring& ring, const GridSpec& grid) {
   Ring out;
   out.reserve(ring.size());
-  for (const Vec2& p : ring) out.push_back(grid.transform.pixelToWorld(p.x, grid.height - p.y));
+  for (const Vec2& p : ring) out.push_back(vectorize::toWorld(p, grid));
   return out;
 }
 

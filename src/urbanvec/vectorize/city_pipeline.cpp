@@ -13,7 +13,7 @@ namespace {
 
 struct Frame {
   const GridSpec& grid;
-  Vec2 toWorld(const Vec2& p) const { return grid.transform.pixelToWorld(p.x, grid.height - p.y); }
+  Vec2 toWorld(const Vec2& p) const { return vectorize::toWorld(p, grid); }
   Vec2 toCells(const Vec2& w) const {
     const Vec2 px = grid.transform.worldToPixel(w);
     return {px.x, grid.height - px.y};

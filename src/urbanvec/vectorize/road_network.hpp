@@ -83,4 +83,10 @@ struct SimulatedCity {
   std::vector<SimulatedParcel> parcels;
 };
 
+/// Internal frame (x = col, y = H - row, pw) to world coordinates through the geotransform; correct
+/// for north-up, south-up and rotated transforms alike.
+inline Vec2 toWorld(const Vec2& internal, const GridSpec& spec) {
+  return spec.transform.pixelToWorld(internal.x, spec.height - internal.y);
+}
+
 }  // namespace urbanvec::vectorize

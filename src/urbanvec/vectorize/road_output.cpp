@@ -7,10 +7,6 @@
 
 namespace urbanvec::vectorize {
 
-Vec2 toWorld(const Vec2& p, const GridSpec& spec) {
-  return spec.transform.pixelToWorld(p.x, spec.height - p.y);
-}
-
 namespace {
 
 /// GEOS topology-preserving simplification of all lines at once (ends kept, no new crossings).

@@ -15,9 +15,6 @@
 
 namespace urbanvec::vectorize {
 
-/// Internal frame (x = col, y = H - row, pw) to world coordinates through the geotransform; correct
-/// for north-up, south-up and rotated transforms alike.
-Vec2 toWorld(const Vec2& internal, const GridSpec& spec);
 
 /// The segments and segment-end nodes of the graph, internal frame. A node ends segments when its
 /// degree is not 2 or its two links carry different classes; rings of degree-2 nodes start at their
