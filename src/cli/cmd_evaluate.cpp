@@ -83,6 +83,12 @@ app::CommandSpec spec() {
                           .atLeast(1e-6)
                           .atMost(1)
                           .isAdvanced());
+  s.options.push_back(option("-min-block-cells", ValueType::Real, "<cells>",
+                             "Truth blocks smaller than this are left out of the block matching.")
+                          .byDefault(app::numberText(defaults.minTruthBlockCells))
+                          .withUnit("cells")
+                          .atLeast(0)
+                          .isAdvanced());
   s.options.push_back(option("-sample-spacing", ValueType::Real, "<cells>",
                              "Spacing of the points sampled along road centrelines for the distances.")
                           .byDefault(app::numberText(defaults.sampleSpacingCells))
@@ -201,6 +207,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
     ctx.warn("the truth parcels (" + labels.truthParcels + ") have no field '" + options.truthLandUseField +
              "'; the land-use share error is absent");
   options.blockMatchIoU = args.real("-min-iou");
+  options.minTruthBlockCells = args.real("-min-block-cells");
   options.sampleSpacingCells = args.real("-sample-spacing");
   const evaluate::EvaluationReport report =
       evaluate::evaluate(input, options, subProgress(ctx.progress, 0.3, 1.0));

@@ -23,36 +23,49 @@ using app::ValueType;
 app::CommandSpec spec() {
   app::CommandSpec s;
   s.name = "gridify";
-  s.summary = "Turns real city vectors (OpenStreetMap, GeoPackage, shapefile) into the gridded input of vectorize.";
+  s.summary =
+      "Turns real city vectors (OpenStreetMap, GeoPackage, shapefile) into the gridded input of vectorize.";
   s.description =
-      "Reads roads, land use, buildings, water (and the sea side of an OSM coastline) and optional parcels from any "
-      "OGR source, and writes landuse.tif, density.tif, parcels.tif, parcels.csv and truth.gpkg (roads, blocks, "
-      "parcels, water, grid_info) into <output_dir>. Secondary roads are rasterized 1 cell wide and primary roads 2 "
+      "Reads roads, land use, buildings, water (and the sea side of an OSM coastline) and optional parcels "
+      "from any "
+      "OGR source, and writes landuse.tif, density.tif, parcels.tif, parcels.csv and truth.gpkg (roads, "
+      "blocks, "
+      "parcels, water, grid_info) into <output_dir>. Secondary roads are rasterized 1 cell wide and primary "
+      "roads 2 "
       "cells wide, both 4-connected. OSM files are read through GDAL's OSM driver (layers lines and "
       "multipolygons); other sources name their layers with -roads-layer, -buildings-layer, -parcels-layer, "
       "-landuse-layer, -water-layer. See docs/gridify.md for the class mapping and every rule.";
   s.group = "Gridded input";
-  s.positionals = {{"input", "City vectors: .osm/.pbf, GeoPackage, shapefile or any OGR source.", Role::InputVector},
-                   {"output_dir", "Folder to create with the grid and truth.gpkg.", Role::OutputFolder}};
+  s.positionals = {
+      {"input", "City vectors: .osm/.pbf, GeoPackage, shapefile or any OGR source.", Role::InputVector},
+      {"output_dir", "Folder to create with the grid and truth.gpkg.", Role::OutputFolder}};
   auto& o = s.options;
   o.push_back(option("-tr", ValueType::Real, "<metres>", "Cell size.").byDefault("12").withUnit("m"));
-  o.push_back(option("-te", ValueType::Real, "<xmin> <ymin> <xmax> <ymax>",
-                     "Grid extent in the grid CRS; default: the extent of the roads, buildings and land-use areas, "
-                     "snapped outwards to whole cells.")
-                  .values(4)
-                  .withUnit("m"));
-  o.push_back(option("-t_srs", ValueType::String, "<crs>",
-                     "Grid CRS (projected, metres); default: the UTM zone of the data's centre when the input is "
-                     "geographic, else the input CRS.")
+  o.push_back(
+      option("-te", ValueType::Real, "<xmin> <ymin> <xmax> <ymax>",
+             "Grid extent in the grid CRS; default: the extent of the roads, buildings and land-use areas, "
+             "snapped outwards to whole cells.")
+          .values(4)
+          .withUnit("m"));
+  o.push_back(
+      option("-t_srs", ValueType::String, "<crs>",
+             "Grid CRS (projected, metres); default: the UTM zone of the data's centre when the input is "
+             "geographic, else the input CRS.")
+          .withRole(Role::Crs));
+  o.push_back(option("-a_srs", ValueType::String, "<crs>",
+                     "CRS of an input that carries none (overrides the input's).")
                   .withRole(Role::Crs));
-  o.push_back(option("-a_srs", ValueType::String, "<crs>", "CRS of an input that carries none (overrides the input's).")
-                  .withRole(Role::Crs));
-  o.push_back(option("-roads-layer", ValueType::String, "<layer>", "Roads layer of a non-OSM input; default roads or streets."));
-  o.push_back(option("-buildings-layer", ValueType::String, "<layer>", "Buildings layer of a non-OSM input; default buildings."));
-  o.push_back(option("-parcels-layer", ValueType::String, "<layer>",
-                     "Layer of real parcels; without it parcels are a building-based tessellation of the blocks."));
-  o.push_back(option("-landuse-layer", ValueType::String, "<layer>", "Land-use polygons of a non-OSM input; default landuse."));
-  o.push_back(option("-water-layer", ValueType::String, "<layer>", "Water polygons of a non-OSM input; default water."));
+  o.push_back(option("-roads-layer", ValueType::String, "<layer>",
+                     "Roads layer of a non-OSM input; default roads or streets."));
+  o.push_back(option("-buildings-layer", ValueType::String, "<layer>",
+                     "Buildings layer of a non-OSM input; default buildings."));
+  o.push_back(
+      option("-parcels-layer", ValueType::String, "<layer>",
+             "Layer of real parcels; without it parcels are a building-based tessellation of the blocks."));
+  o.push_back(option("-landuse-layer", ValueType::String, "<layer>",
+                     "Land-use polygons of a non-OSM input; default landuse."));
+  o.push_back(option("-water-layer", ValueType::String, "<layer>",
+                     "Water polygons of a non-OSM input; default water."));
   o.push_back(option("-road-class-field", ValueType::String, "<field>",
                      "Field with OSM highway values; a roads layer without it is all of -default-road-class.")
                   .byDefault("highway"));
@@ -64,21 +77,26 @@ app::CommandSpec spec() {
                      "Comma-separated highway values rasterized as primary roads.")
                   .byDefault("motorway,motorway_link,trunk,trunk_link,primary,primary_link")
                   .isAdvanced());
-  o.push_back(option("-secondary-highways", ValueType::String, "<list>",
-                     "Comma-separated highway values rasterized as secondary roads.")
-                  .byDefault("secondary,secondary_link,tertiary,tertiary_link,unclassified,residential,living_street")
-                  .isAdvanced());
-  o.push_back(option("-service-roads", ValueType::Flag, "", "Also rasterize highway=service as secondary roads."));
-  o.push_back(option("-landuse-field", ValueType::String, "<field>",
-                     "Field with a class name or landuse/building value in land-use, building and parcel layers."));
+  o.push_back(
+      option("-secondary-highways", ValueType::String, "<list>",
+             "Comma-separated highway values rasterized as secondary roads.")
+          .byDefault("secondary,secondary_link,tertiary,tertiary_link,unclassified,residential,living_street")
+          .isAdvanced());
+  o.push_back(
+      option("-service-roads", ValueType::Flag, "", "Also rasterize highway=service as secondary roads."));
+  o.push_back(
+      option("-landuse-field", ValueType::String, "<field>",
+             "Field with a class name or landuse/building value in land-use, building and parcel layers."));
   o.push_back(option("-population-field", ValueType::String, "<field>",
                      "Parcel field with the population; default: estimated from buildings."));
-  o.push_back(option("-levels-field", ValueType::String, "<field>", "Building field with the number of storeys.")
-                  .byDefault("building:levels")
-                  .isAdvanced());
-  o.push_back(option("-default-levels", ValueType::Real, "<storeys>", "Storeys of a building whose count is unknown.")
-                  .byDefault("3")
-                  .atLeast(0.1));
+  o.push_back(
+      option("-levels-field", ValueType::String, "<field>", "Building field with the number of storeys.")
+          .byDefault("building:levels")
+          .isAdvanced());
+  o.push_back(
+      option("-default-levels", ValueType::Real, "<storeys>", "Storeys of a building whose count is unknown.")
+          .byDefault("3")
+          .atLeast(0.1));
   o.push_back(option("-floor-area-per-person", ValueType::Real, "<m2>",
                      "Residential floor area per inhabitant, for the population estimate.")
                   .byDefault("40")
@@ -90,11 +108,23 @@ app::CommandSpec spec() {
                   .withUnit("m")
                   .atLeast(0)
                   .isAdvanced());
+  o.push_back(option("-truth-curb-primary", ValueType::Real, "<cells>",
+                     "Truth blocks end this far from a primary road's centreline (its half width).")
+                  .byDefault(app::numberText(gridify::GridifyOptions{}.truthCurbPrimaryCells))
+                  .withUnit("cells")
+                  .atLeast(0)
+                  .isAdvanced());
+  o.push_back(option("-truth-curb-secondary", ValueType::Real, "<cells>",
+                     "Truth blocks end this far from a secondary road's centreline (its half width).")
+                  .byDefault(app::numberText(gridify::GridifyOptions{}.truthCurbSecondaryCells))
+                  .withUnit("cells")
+                  .atLeast(0)
+                  .isAdvanced());
   for (const app::OptionSpec& r : app::rasterOutputOptions()) o.push_back(r);
-  s.examples = {
-      "urbanvec gridify -tr 8 monaco.osm.pbf monaco_grid",
-      "urbanvec gridify -tr 6 -t_srs EPSG:32633 -roads-layer streets -buildings-layer buildings -parcels-layer plots "
-      "bubenec.gpkg bubenec_grid"};
+  s.examples = {"urbanvec gridify -tr 8 monaco.osm.pbf monaco_grid",
+                "urbanvec gridify -tr 6 -t_srs EPSG:32633 -roads-layer streets -buildings-layer buildings "
+                "-parcels-layer plots "
+                "bubenec.gpkg bubenec_grid"};
   s.outputLayers = {"roads", "blocks", "parcels", "water", "grid_info"};
   return s;
 }
@@ -130,13 +160,15 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
     const std::vector<std::string> v = args.values("-te");
     gridify::Extent e{std::stod(v[0]), std::stod(v[1]), std::stod(v[2]), std::stod(v[3])};
     if (!(e.maxX > e.minX) || !(e.maxY > e.minY))
-      throw invalidOption("-te: xmax must exceed xmin and ymax exceed ymin, got " + v[0] + " " + v[1] + " " + v[2] +
-                          " " + v[3]);
+      throw invalidOption("-te: xmax must exceed xmin and ymax exceed ymin, got " + v[0] + " " + v[1] + " " +
+                          v[2] + " " + v[3]);
     options.extent = e;
   }
   options.defaultLevels = args.real("-default-levels");
   options.floorAreaPerPerson = args.real("-floor-area-per-person");
   options.parcelReach = args.real("-parcel-reach");
+  options.truthCurbPrimaryCells = args.real("-truth-curb-primary");
+  options.truthCurbSecondaryCells = args.real("-truth-curb-secondary");
 
   io::CitySourceOptions source;
   if (args.given("-a_srs")) source.assignedCrs = args.str("-a_srs");
@@ -150,7 +182,8 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   if (args.given("-population-field")) source.populationField = args.str("-population-field");
   source.roadClassField = args.str("-road-class-field");
   source.levelsField = args.str("-levels-field");
-  source.defaultRoadClass = args.str("-default-road-class") == "primary" ? LandUse::PrimaryRoad : LandUse::SecondaryRoad;
+  source.defaultRoadClass =
+      args.str("-default-road-class") == "primary" ? LandUse::PrimaryRoad : LandUse::SecondaryRoad;
   source.roadClasses.primary = splitList(args.str("-primary-highways"));
   source.roadClasses.secondary = splitList(args.str("-secondary-highways"));
   if (args.flag("-service-roads")) source.roadClasses.secondary.push_back("service");

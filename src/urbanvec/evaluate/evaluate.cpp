@@ -24,6 +24,22 @@ void checkOptions(const EvaluationInput& input, const EvaluateOptions& options) 
   if (!(options.blockMatchIoU > 0.0 && options.blockMatchIoU <= 1.0))
     throw invalidOption("the block match IoU must be in (0, 1], got " +
                         std::to_string(options.blockMatchIoU));
+  if (!(options.minTruthBlockCells >= 0.0) || !std::isfinite(options.minTruthBlockCells))
+    throw invalidOption("the smallest truth block must be a non-negative number of cells, got " +
+                        std::to_string(options.minTruthBlockCells));
+}
+
+/// The truth blocks of at least `minArea` m², as a layer of their own.
+Layer blocksAtLeast(const Layer& blocks, double minArea) {
+  Layer kept = blocks;
+  kept.features.clear();
+  for (const Feature& f : blocks.features) {
+    double a = 0.0;
+    if (const auto* p = std::get_if<Polygon>(&f.geometry)) a = area(*p);
+    if (const auto* m = std::get_if<MultiPolygon>(&f.geometry)) a = area(*m);
+    if (a >= minArea) kept.features.push_back(f);
+  }
+  return kept;
 }
 
 double totalLengthKm(const std::vector<LineString>& lines) {
@@ -102,14 +118,23 @@ EvaluationReport evaluate(const EvaluationInput& input, const EvaluateOptions& o
 
   geos::Context ctx;
   std::optional<PolygonLayer> truthBlocks, resultBlocks, truthParcels, resultParcels;
-  if (input.truth.blocks) truthBlocks.emplace(ctx, *input.truth.blocks);
+  std::optional<Layer> countedTruthBlocks;
+  if (input.truth.blocks) {
+    countedTruthBlocks =
+        blocksAtLeast(*input.truth.blocks, options.minTruthBlockCells * input.cellSize * input.cellSize);
+    truthBlocks.emplace(ctx, *countedTruthBlocks);
+  }
   if (input.result.blocks) resultBlocks.emplace(ctx, *input.result.blocks);
   if (input.truth.parcels) truthParcels.emplace(ctx, *input.truth.parcels);
   if (input.result.parcels) resultParcels.emplace(ctx, *input.result.parcels);
 
   BlockReport& blocks = report.blocks;
   blocks.iouThreshold = options.blockMatchIoU;
-  if (truthBlocks) blocks.truthCount = truthBlocks->size();
+  blocks.minTruthBlockCells = options.minTruthBlockCells;
+  if (truthBlocks) {
+    blocks.truthCount = truthBlocks->size();
+    blocks.truthSmallCount = input.truth.blocks->features.size() - truthBlocks->size();
+  }
   if (resultBlocks) {
     blocks.resultCount = resultBlocks->size();
     blocks.resultInvalidCount = resultBlocks->invalidCount();
@@ -127,6 +152,22 @@ EvaluationReport evaluate(const EvaluationInput& input, const EvaluateOptions& o
     if (truthBlocks->size() > 0) {
       blocks.matchedShare = static_cast<double>(matched) / static_cast<double>(truthBlocks->size());
       blocks.meanBestIoU = iouSum / static_cast<double>(truthBlocks->size());
+    }
+    const int kindField = countedTruthBlocks->fieldIndex("kind");
+    if (kindField >= 0) {
+      std::size_t internalCount = 0, internalMatched = 0;
+      for (std::size_t t = 0; t < truthBlocks->size(); ++t) {
+        const Feature& f = countedTruthBlocks->features[truthBlocks->featureIndex(t)];
+        const auto* kind = std::get_if<std::string>(&f.values[kindField]);
+        if (!kind || *kind != "internal") continue;
+        ++internalCount;
+        if (matching->bestIoU[t] >= options.blockMatchIoU) ++internalMatched;
+      }
+      blocks.internalTruthCount = internalCount;
+      blocks.internalMatchedCount = internalMatched;
+      if (internalCount > 0)
+        blocks.internalMatchedShare =
+            static_cast<double>(internalMatched) / static_cast<double>(internalCount);
     }
   }
   reportProgress(progress, 0.7, "parcels");

@@ -37,6 +37,9 @@ struct EvaluateOptions {
   std::vector<std::string> excludedRoadClasses = {"perimeter"};
   /// Smallest intersection over union (ratio, 0..1) for a truth block to count as matched.
   double blockMatchIoU = 0.7;
+  /// Truth blocks smaller than this many cells are not counted in the block matching (issue 4:
+  /// "truth blocks (area >= 4 cells)"): a block of a cell or two is below what the grid can hold.
+  double minTruthBlockCells = 4.0;
   /// Field of the result parcels holding the land use (class name, or class code as in landuse.tif).
   std::string resultLandUseField = "land_use";
   /// Field of the truth parcels holding the land use.
@@ -66,11 +69,18 @@ struct RoadReport {
 };
 
 struct BlockReport {
-  double iouThreshold = 0.0;  ///< EvaluateOptions::blockMatchIoU used for matchedCount
-  std::optional<std::size_t> truthCount;
+  double iouThreshold = 0.0;                   ///< EvaluateOptions::blockMatchIoU used for matchedCount
+  std::optional<std::size_t> truthCount;       ///< truth blocks of at least minTruthBlockCells
+  std::optional<std::size_t> truthSmallCount;  ///< truth blocks left out as too small
+  double minTruthBlockCells = 0.0;             ///< EvaluateOptions::minTruthBlockCells used
   std::optional<std::size_t> resultCount;
-  std::optional<std::size_t> matchedCount;        ///< truth blocks whose best result block reaches the IoU
-  std::optional<double> matchedShare;             ///< matchedCount / truthCount
+  std::optional<std::size_t> matchedCount;  ///< truth blocks whose best result block reaches the IoU
+  std::optional<double> matchedShare;       ///< matchedCount / truthCount
+  /// The same over the truth blocks whose `kind` is `internal` (enclosed by roads); absent when the
+  /// truth has no kind field. External truth faces run to the grid's edge, which no vectorizer draws.
+  std::optional<std::size_t> internalTruthCount;
+  std::optional<std::size_t> internalMatchedCount;
+  std::optional<double> internalMatchedShare;
   std::optional<double> meanBestIoU;              ///< mean over truth blocks of the best IoU (0 when none)
   std::optional<std::size_t> resultInvalidCount;  ///< result blocks failing GEOSisValid
 };

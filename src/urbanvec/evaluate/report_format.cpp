@@ -83,10 +83,20 @@ std::string formatReportTable(const EvaluationReport& report, const ReportInputs
     ratio = "undefined (the truth roads never turn)";
   rows.push_back({"roads: turning ratio result/truth", ratio});
   rows.push_back({"blocks: count truth / result", count(b.truthCount) + " / " + count(b.resultCount)});
+  if (b.truthSmallCount)
+    rows.push_back({"blocks: truth < " + format("%g", b.minTruthBlockCells) + " cells, not counted",
+                    count(b.truthSmallCount)});
   std::string matched = number(b.matchedShare, "%.4f");
   if (b.matchedShare)
     matched += " (" + std::to_string(*b.matchedCount) + " of " + std::to_string(*b.truthCount) + ")";
   rows.push_back({"blocks: matched share (IoU >= " + format("%g", b.iouThreshold) + ")", matched});
+  if (b.internalTruthCount) {
+    std::string internal = number(b.internalMatchedShare, "%.4f");
+    if (b.internalMatchedShare)
+      internal += " (" + std::to_string(*b.internalMatchedCount) + " of " +
+                  std::to_string(*b.internalTruthCount) + ")";
+    rows.push_back({"blocks: matched share, internal", internal});
+  }
   rows.push_back({"blocks: mean best IoU", number(b.meanBestIoU, "%.4f")});
   rows.push_back({"blocks: invalid result geometries", count(b.resultInvalidCount)});
   rows.push_back({"parcels: count truth / result", count(p.truthCount) + " / " + count(p.resultCount)});
@@ -142,9 +152,14 @@ std::string formatReportJson(const EvaluationReport& report, const ReportInputs&
   nlohmann::ordered_json blocks;
   blocks["truth_count"] = orNull(b.truthCount);
   blocks["result_count"] = orNull(b.resultCount);
+  blocks["truth_small_count"] = orNull(b.truthSmallCount);
+  blocks["min_truth_block_cells"] = b.minTruthBlockCells;
   blocks["iou_threshold"] = b.iouThreshold;
   blocks["matched_count"] = orNull(b.matchedCount);
   blocks["matched_share"] = orNull(b.matchedShare);
+  blocks["internal_truth_count"] = orNull(b.internalTruthCount);
+  blocks["internal_matched_count"] = orNull(b.internalMatchedCount);
+  blocks["internal_matched_share"] = orNull(b.internalMatchedShare);
   blocks["mean_best_iou"] = orNull(b.meanBestIoU);
   blocks["result_invalid_count"] = orNull(b.resultInvalidCount);
   j["blocks"] = blocks;

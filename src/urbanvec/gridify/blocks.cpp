@@ -38,4 +38,32 @@ std::vector<TruthBlock> roadBlocks(const MultiLineString& roads, const Extent& b
   return blocks;
 }
 
+std::vector<TruthBlock> curbBlocks(const std::vector<TruthBlock>& faces, const MultiLineString& roads,
+                                   const std::vector<double>& halfWidths, double minArea) {
+  geos::Context ctx;
+  std::vector<MultiPolygon> corridors;
+  corridors.reserve(roads.size());
+  for (std::size_t i = 0; i < roads.size(); ++i) {
+    if (roads[i].size() < 2 || !(halfWidths[i] > 0.0)) continue;
+    geos::GeomPtr line = ctx.lineString(roads[i]);
+    geos::GeomPtr corridor =
+        ctx.own(GEOSBuffer_r(ctx.handle(), line.get(), halfWidths[i], 8), "road corridor");
+    corridors.push_back(ctx.toPolygons(corridor.get()));
+  }
+  geos::GeomPtr roadSurface = corridors.empty() ? nullptr : unionPolygons(ctx, corridors);
+  std::vector<TruthBlock> blocks;
+  for (const TruthBlock& face : faces) {
+    MultiPolygon land{face.shape};
+    if (roadSurface) {
+      geos::GeomPtr faceGeom = ctx.polygon(face.shape);
+      geos::GeomPtr rest =
+          ctx.own(GEOSDifference_r(ctx.handle(), faceGeom.get(), roadSurface.get()), "cut road corridors");
+      land = ctx.toPolygons(rest.get());
+    }
+    for (Polygon& part : land)
+      if (area(part) >= minArea) blocks.push_back({std::move(part), face.external});
+  }
+  return blocks;
+}
+
 }  // namespace urbanvec::gridify

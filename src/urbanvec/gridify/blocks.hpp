@@ -19,4 +19,11 @@ struct TruthBlock {
 std::vector<TruthBlock> roadBlocks(const MultiLineString& roads, const Extent& box,
                                    const std::vector<MultiPolygon>& water, double minArea);
 
+/// The land between the curbs: each block minus the road corridors (each centreline buffered by its
+/// half-width in metres, round ends), the way the vectorizer's curbs bound its blocks (spec C: curbs at
+/// 1 cell for primary, 0.5 cell for secondary roads). Pieces smaller than minArea (m²) are dropped;
+/// a face a corridor cuts in two gives two blocks of its kind.
+std::vector<TruthBlock> curbBlocks(const std::vector<TruthBlock>& faces, const MultiLineString& roads,
+                                   const std::vector<double>& halfWidths, double minArea);
+
 }  // namespace urbanvec::gridify

@@ -80,7 +80,8 @@ struct Frame {
 /// A point inside a building footprint (for the cell of small buildings and for parcel lookup).
 Vec2 pointOnSurface(const geos::Context& ctx, const MultiPolygon& shape) {
   geos::GeomPtr g = validPolygons(ctx, shape);
-  if (GEOSisEmpty_r(ctx.handle(), g.get()) == 1) return shape.empty() || shape[0].outer.empty() ? Vec2{} : shape[0].outer[0];
+  if (GEOSisEmpty_r(ctx.handle(), g.get()) == 1)
+    return shape.empty() || shape[0].outer.empty() ? Vec2{} : shape[0].outer[0];
   geos::GeomPtr p = ctx.own(GEOSPointOnSurface_r(ctx.handle(), g.get()), "point on surface");
   double x = 0.0, y = 0.0;
   GEOSGeomGetX_r(ctx.handle(), p.get(), &x);
@@ -108,12 +109,15 @@ Layer makeGridInfo(const GridSpec& spec, double cellSize, const std::string& crs
   Layer info;
   info.name = "grid_info";
   info.geometryType = GeometryType::None;
-  info.fields = {{"cell_size", FieldType::Real}, {"width", FieldType::Integer}, {"height", FieldType::Integer},
-                 {"geotransform", FieldType::String}, {"crs", FieldType::String}};
+  info.fields = {{"cell_size", FieldType::Real},
+                 {"width", FieldType::Integer},
+                 {"height", FieldType::Integer},
+                 {"geotransform", FieldType::String},
+                 {"crs", FieldType::String}};
   std::string gt;
   for (int i = 0; i < 6; ++i) gt += (i ? " " : "") + formatNumber(spec.transform.c[i]);
-  info.features.push_back({std::monostate{},
-                           {cellSize, std::int64_t{spec.width}, std::int64_t{spec.height}, gt, crsName}});
+  info.features.push_back(
+      {std::monostate{}, {cellSize, std::int64_t{spec.width}, std::int64_t{spec.height}, gt, crsName}});
   return info;
 }
 
@@ -138,7 +142,8 @@ GridifyResult gridify(const CityData& city, const GridifyOptions& options, const
     throw invalidOption("-tr: the cell size must be a positive number of metres, not " +
                         formatNumber(options.cellSize));
   if (!(options.floorAreaPerPerson > 0.0))
-    throw invalidOption("-floor-area-per-person must be positive, not " + formatNumber(options.floorAreaPerPerson));
+    throw invalidOption("-floor-area-per-person must be positive, not " +
+                        formatNumber(options.floorAreaPerPerson));
   const double cs = options.cellSize;
 
   // Grid frame.
@@ -158,7 +163,8 @@ GridifyResult gridify(const CityData& city, const GridifyOptions& options, const
     throw invalidOption("-te: the extent " + formatNumber(box.minX) + " " + formatNumber(box.minY) + " " +
                         formatNumber(box.maxX) + " " + formatNumber(box.maxY) + " holds no cell of " +
                         formatNumber(cs) + " m");
-  if (w * h > 2.0e8) throw invalidOption("-tr: " + formatNumber(w) + " x " + formatNumber(h) + " cells is too many");
+  if (w * h > 2.0e8)
+    throw invalidOption("-tr: " + formatNumber(w) + " x " + formatNumber(h) + " cells is too many");
   GridifyResult result;
   GridSpec& spec = result.spec;
   spec.width = static_cast<int>(w);
@@ -178,7 +184,8 @@ GridifyResult gridify(const CityData& city, const GridifyOptions& options, const
   std::iota(order.begin(), order.end(), 0);
   std::vector<double> areaSize(city.areas.size());
   for (std::size_t i = 0; i < city.areas.size(); ++i) areaSize[i] = area(city.areas[i].shape);
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return areaSize[a] > areaSize[b]; });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return areaSize[a] > areaSize[b]; });
   std::vector<MultiPolygon> waterShapes = city.water;
   for (std::size_t i : order) {
     const CityArea& a = city.areas[i];
@@ -243,10 +250,13 @@ GridifyResult gridify(const CityData& city, const GridifyOptions& options, const
   Layer roadLayer;
   roadLayer.name = "roads";
   roadLayer.geometryType = GeometryType::LineString;
-  roadLayer.fields = {{"road_id", FieldType::Integer}, {"road_class", FieldType::String},
-                      {"source_class", FieldType::String}, {"name", FieldType::String},
+  roadLayer.fields = {{"road_id", FieldType::Integer},
+                      {"road_class", FieldType::String},
+                      {"source_class", FieldType::String},
+                      {"name", FieldType::String},
                       {"length", FieldType::Real}};
   MultiLineString rasterizedLines;
+  std::vector<double> curbOffsets;  // metres from each rasterized line to its curbs
   for (std::size_t i = 0; i < city.roads.size(); ++i) {
     if (!roads.rasterized[i]) continue;
     const CityRoad& r = city.roads[i];
@@ -254,17 +264,22 @@ GridifyResult gridify(const CityData& city, const GridifyOptions& options, const
     if (parts.empty()) continue;
     ++result.roadsRasterized;
     const std::string cls = r.roadClass == LandUse::PrimaryRoad ? "primary" : "secondary";
+    const double curbCells =
+        r.roadClass == LandUse::PrimaryRoad ? options.truthCurbPrimaryCells : options.truthCurbSecondaryCells;
     for (LineString& part : parts) {
       rasterizedLines.push_back(part);
+      curbOffsets.push_back(curbCells * cs);
       const double len = length(part);
-      roadLayer.features.push_back({std::move(part),
-                                    {static_cast<std::int64_t>(roadLayer.features.size() + 1), cls, r.sourceClass,
-                                     r.name, len}});
+      roadLayer.features.push_back(
+          {std::move(part),
+           {static_cast<std::int64_t>(roadLayer.features.size() + 1), cls, r.sourceClass, r.name, len}});
     }
   }
 
-  // Truth blocks: faces of the noded network, minus water.
+  // Faces of the noded network minus water hold the derived parcels; the truth blocks are the land
+  // between their curbs.
   std::vector<TruthBlock> blocks = roadBlocks(rasterizedLines, box, waterClipped, kMinBlockArea);
+  const std::vector<TruthBlock> truthBlocks = curbBlocks(blocks, rasterizedLines, curbOffsets, kMinBlockArea);
   reportProgress(progress, 0.6, "parcels");
 
   // Parcels: given ones clipped to the grid, or a tessellation of the blocks.
@@ -358,8 +373,9 @@ GridifyResult gridify(const CityData& city, const GridifyOptions& options, const
   Layer blockLayer;
   blockLayer.name = "blocks";
   blockLayer.geometryType = GeometryType::Polygon;
-  blockLayer.fields = {{"block_id", FieldType::Integer}, {"kind", FieldType::String}, {"area", FieldType::Real}};
-  for (const TruthBlock& b : blocks)
+  blockLayer.fields = {
+      {"block_id", FieldType::Integer}, {"kind", FieldType::String}, {"area", FieldType::Real}};
+  for (const TruthBlock& b : truthBlocks)
     blockLayer.features.push_back({b.shape,
                                    {static_cast<std::int64_t>(blockLayer.features.size() + 1),
                                     std::string(b.external ? "external" : "internal"), area(b.shape)}});

@@ -29,6 +29,10 @@ struct GridifyOptions {
   /// Dual carriageways and parallel roads whose rasterized centrelines come within this many cells of
   /// each other are merged so that widths stay exact (see docs/gridify.md "Road widths").
   int mergeGapCells = 1;
+  /// Truth blocks end at curbs this many cells from a primary / secondary centreline: the road
+  /// widths the grid gives them, and where the vectorizer puts its curbs (spec C).
+  double truthCurbPrimaryCells = 1.0;
+  double truthCurbSecondaryCells = 0.5;
 };
 
 struct ParcelRecord {
@@ -41,8 +45,8 @@ struct ParcelRecord {
 struct GridifyResult {
   GridSpec spec;  ///< frame of every raster (CRS = the city's)
   Grid<std::uint8_t> landUse;
-  Grid<float> density;          ///< population per cell
-  Grid<std::int32_t> parcelIds; ///< 0 = none
+  Grid<float> density;                ///< population per cell
+  Grid<std::int32_t> parcelIds;       ///< 0 = none
   std::vector<ParcelRecord> parcels;  ///< ids 1..n in order
   /// Truth layers in the grid's CRS: roads, blocks, parcels, water, and the grid_info table (whose
   /// crs field the caller fills with the CRS short name, which needs PROJ).

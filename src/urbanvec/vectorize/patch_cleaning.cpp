@@ -9,7 +9,8 @@
 
 namespace urbanvec::vectorize {
 
-PatchCleaningStats cleanIntersectionPatches(Grid<std::uint8_t>& cells, const Progress& progress) {
+PatchCleaningStats cleanIntersectionPatches(Grid<std::uint8_t>& cells, const Progress& progress,
+                                            const PatchCleaningOptions& options) {
   const int w = cells.width, h = cells.height;
   const auto primary = static_cast<std::uint8_t>(LandUse::PrimaryRoad);
   const auto secondary = static_cast<std::uint8_t>(LandUse::SecondaryRoad);
@@ -25,6 +26,30 @@ PatchCleaningStats cleanIntersectionPatches(Grid<std::uint8_t>& cells, const Pro
     return false;
   };
   const int dcs[4] = {0, 1, 0, -1}, drs[4] = {-1, 0, 1, 0};  // N, E, S, W
+  // Two or more runs of primary patches around the patch's 8-ring that hold one of its 4-neighbours:
+  // those primary patches meet only through this patch.
+  auto bridgesPrimaries = [&](int c, int r) {
+    const int ringC[8] = {0, 1, 1, 1, 0, -1, -1, -1},
+              ringR[8] = {-1, -1, 0, 1, 1, 1, 0, -1};  // N, NE, E, ...
+    bool ring[8];
+    for (int k = 0; k < 8; ++k) ring[k] = isPrimary(c + ringC[k], r + ringR[k]);
+    int start = 0;
+    while (start < 8 && ring[start]) ++start;
+    if (start == 8) return false;  // surrounded by primary
+    int runs = 0;
+    bool inRun = false, runHasSide = false;
+    for (int step = 1; step <= 8; ++step) {
+      const int k = (start + step) % 8;
+      if (ring[k]) {
+        if (!inRun) inRun = true, runHasSide = false;
+        runHasSide |= k % 2 == 0;
+      } else if (inRun) {
+        inRun = false;
+        runs += runHasSide ? 1 : 0;
+      }
+    }
+    return runs >= 2;
+  };
 
   PatchCleaningStats stats;
   std::vector<char> processed(static_cast<size_t>(w) * h, 0);
@@ -95,6 +120,10 @@ PatchCleaningStats cleanIntersectionPatches(Grid<std::uint8_t>& cells, const Pro
       }
       for (int i : visited) {
         if (!disconnected.empty() && parent[i] == -3) continue;
+        if (options.keepPrimaryBridges && bridgesPrimaries(i % w, i / w)) {
+          ++stats.bridgesKept;
+          continue;
+        }
         cells.cells[i] = kRemovedRoad;
         ++stats.removedPatches;
       }

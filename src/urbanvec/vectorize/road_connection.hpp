@@ -13,6 +13,11 @@ struct RoadConnectionOptions {
   /// pw (a secondary patch touching a 2-wide primary is about 1-1.6 pw from its centreline; farther
   /// nodes mean the primary road had no node nearby and a link would cut across blocks).
   double maxConnectionDistance = 3.0;
+  /// [INFERENCE, beyond the documents] A connection node touching primary patches of two roads (a
+  /// secondary cell bridging two primaries, as rasterized junctions make) links to the closest
+  /// primary node of each side, so the grid's connection is kept; the documents' single link to "the
+  /// closest node" leaves the other primary road ending short, and the block between them open.
+  bool linkEverySide = true;
   /// [INFERENCE] A perimeter end links to the nearest road node without a perimeter link only
   /// within this distance, in pw.
   double maxPerimeterDistance = 3.0;
@@ -24,6 +29,7 @@ struct RoadConnectionOptions {
 
 struct RoadConnectionStats {
   std::size_t connections = 0;  ///< secondary-to-primary links added
+  std::size_t bridges = 0;      ///< of those, second links to the primary road on another side
   std::size_t unconnected = 0;  ///< connection nodes with no primary node in reach
   std::size_t clustersMerged = 0;
   std::size_t perimeterEndsLinked = 0;

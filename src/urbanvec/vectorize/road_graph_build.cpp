@@ -128,6 +128,21 @@ RoadGraphBuild buildRoadGraph(Grid<std::uint8_t>& cells, const RoadGraphOptions&
         g.link(a, nodeOf.at(c + 1, r));
       if (r + 1 < h && nodeOf.at(c, r + 1) >= 0 && g.nodes[nodeOf.at(c, r + 1)].type == g.nodes[a].type)
         g.link(a, nodeOf.at(c, r + 1));
+      if (options.linkPrimaryKnightSteps && g.nodes[a].type == NodeType::Primary) {
+        const int steps[4][2] = {{1, 2}, {-1, 2}, {2, 1}, {-2, 1}};
+        for (const auto& step : steps) {
+          const int c2 = c + step[0], r2 = r + step[1];
+          if (!nodeOf.inside(c2, r2)) continue;
+          const int b = nodeOf.at(c2, r2);
+          if (b < 0 || g.nodes[b].type != NodeType::Primary) continue;
+          bool bridged = false;  // a window overlapping both already joins them
+          for (int y = std::max(r, r2) - 1; y <= std::min(r, r2) + 1 && !bridged; ++y)
+            for (int x = std::max(c, c2) - 1; x <= std::min(c, c2) + 1 && !bridged; ++x)
+              bridged = (x != c || y != r) && (x != c2 || y != r2) && nodeOf.inside(x, y) &&
+                        nodeOf.at(x, y) >= 0 && g.nodes[nodeOf.at(x, y)].type == NodeType::Primary;
+          if (!bridged) g.link(a, b);
+        }
+      }
       if (options.linkPrimaryDiagonals && g.nodes[a].type == NodeType::Primary && r + 1 < h) {
         for (int dc : {-1, 1}) {
           const int c2 = c + dc;

@@ -25,6 +25,11 @@ struct RoadGraphOptions {
   /// neither shared 4-neighbour has a node. A 2-wide diagonal (staircase) primary road has its 2x2
   /// node blocks touching only at corners, so pure 4-linking would cut it into isolated nodes.
   bool linkPrimaryDiagonals = true;
+  /// [INFERENCE, not in the documents] Also link primary nodes whose 2x2 windows touch along an edge
+  /// a knight's move apart (offsets (1,2) and (2,1)) when no window overlaps both. Rasterized
+  /// junctions of 2-wide roads at an angle leave such steps; without the link the two roads end short
+  /// of each other and the block between them stays open.
+  bool linkPrimaryKnightSteps = true;
   /// Links of this length or more are subdivided until all are shorter (A4.6), in pw.
   double maxLinkLength = 2.0;
 };

@@ -7,6 +7,7 @@
 #include "urbanvec/vectorize/curve_smoothing.hpp"
 #include "urbanvec/vectorize/cycle_removal.hpp"
 #include "urbanvec/vectorize/intersection_simplification.hpp"
+#include "urbanvec/vectorize/patch_cleaning.hpp"
 #include "urbanvec/vectorize/road_connection.hpp"
 #include "urbanvec/vectorize/road_graph_build.hpp"
 #include "urbanvec/vectorize/road_smoothing.hpp"
@@ -313,7 +314,8 @@ TEST(IntersectionSimplification, SharpDeadEndsAndCloseNodesGo) {
 TEST(CurveSmoothing, InsertsThreeTwoOneOrNoNodesPerSideByAngle) {
   const CurveSmoothingOptions defaults;
   EXPECT_EQ(defaults.passes, 8);
-  for (const auto& [angle, perSide] : std::vector<std::pair<double, int>>{{80, 3}, {120, 2}, {150, 1}, {170, 0}}) {
+  for (const auto& [angle, perSide] :
+       std::vector<std::pair<double, int>>{{80, 3}, {120, 2}, {150, 1}, {170, 0}}) {
     RoadGraph g = bend(angle);
     const RoadGraph original = g;
     CurveSmoothingOptions noPasses;
@@ -330,4 +332,69 @@ TEST(CurveSmoothing, InsertsThreeTwoOneOrNoNodesPerSideByAngle) {
     RoadGraph h = bend(angle);
     EXPECT_EQ(smoothCurves(h, defaults).passes, 8);
   }
+}
+
+namespace {
+
+/// Connected components among the alive nodes.
+int componentCount(const RoadGraph& g) {
+  std::vector<int> seen(g.nodes.size(), 0);
+  int components = 0;
+  for (int start : aliveNodes(g)) {
+    if (seen[start]) continue;
+    ++components;
+    std::vector<int> stack{start};
+    seen[start] = 1;
+    while (!stack.empty()) {
+      const int n = stack.back();
+      stack.pop_back();
+      for (int m : g.nodes[n].links)
+        if (!seen[m]) seen[m] = 1, stack.push_back(m);
+    }
+  }
+  return components;
+}
+
+}  // namespace
+
+TEST(RoadGraph, TwoWidePrimariesMeetingAKnightsStepApartAreLinked) {
+  // The vertical road's window (4,0) and the horizontal road's last window (3,2) touch along an edge
+  // with no window overlapping both, as rasterized junctions at an angle leave them.
+  const std::vector<std::string> rows = {
+      "rrrrPPrr",
+      "rrrrPPrr",
+      "PPPPPrrr",
+      "PPPPPrrr",
+  };
+  auto cells = drawGrid(rows);
+  EXPECT_EQ(componentCount(buildRoadGraph(cells, {}).graph), 1);
+  RoadGraphOptions documentsOnly;
+  documentsOnly.linkPrimaryKnightSteps = false;
+  auto cells2 = drawGrid(rows);
+  EXPECT_EQ(componentCount(buildRoadGraph(cells2, documentsOnly).graph), 2);
+}
+
+TEST(Connection, SecondaryCellBridgingTwoPrimariesAtACornerKeepsThemConnected) {
+  // The primaries touch only diagonally, at (4,1)-(5,2); the secondary cell (5,1) joins them.
+  const std::vector<std::string> rows = {
+      "PPPPPrrrrr", "PPPPPsrrrr", "rrrrrPPrrr", "rrrrrPPrrr", "rrrrrPPrrr", "rrrrrPPrrr",
+  };
+  auto cells = drawGrid(rows);
+  const PatchCleaningStats cleaning = cleanIntersectionPatches(cells);
+  EXPECT_EQ(cleaning.bridgesKept, 1u);
+  EXPECT_EQ(cells.at(5, 1), static_cast<std::uint8_t>(LandUse::SecondaryRoad));
+  RoadGraph g = buildRoadGraph(cells, {}).graph;
+  const RoadConnectionStats s = connectRoads(g, {});
+  EXPECT_EQ(s.bridges, 1u);
+  EXPECT_EQ(componentCount(g), 1);
+
+  // The documents' rules alone remove the bridge and leave two roads.
+  auto cells2 = drawGrid(rows);
+  PatchCleaningOptions documentsOnly;
+  documentsOnly.keepPrimaryBridges = false;
+  cleanIntersectionPatches(cells2, {}, documentsOnly);
+  EXPECT_EQ(cells2.at(5, 1), kRemovedRoad);
+  RoadGraph g2 = buildRoadGraph(cells2, {}).graph;
+  connectRoads(g2, {});
+  EXPECT_EQ(componentCount(g2), 2);
 }
