@@ -120,6 +120,12 @@ app::CommandSpec spec() {
                   .withUnit("cells")
                   .atLeast(0)
                   .isAdvanced());
+  o.push_back(option("-truth-road-reach", ValueType::Real, "<cells>",
+                     "Truth roads keep the pieces of their centrelines this close to a road cell's centre.")
+                  .byDefault(app::numberText(gridify::GridifyOptions{}.truthRoadReachCells))
+                  .withUnit("cells")
+                  .atLeast(0.71)
+                  .isAdvanced());
   for (const app::OptionSpec& r : app::rasterOutputOptions()) o.push_back(r);
   s.examples = {"urbanvec gridify -tr 8 monaco.osm.pbf monaco_grid",
                 "urbanvec gridify -tr 6 -t_srs EPSG:32633 -roads-layer streets -buildings-layer buildings "
@@ -169,6 +175,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   options.parcelReach = args.real("-parcel-reach");
   options.truthCurbPrimaryCells = args.real("-truth-curb-primary");
   options.truthCurbSecondaryCells = args.real("-truth-curb-secondary");
+  options.truthRoadReachCells = args.real("-truth-road-reach");
 
   io::CitySourceOptions source;
   if (args.given("-a_srs")) source.assignedCrs = args.str("-a_srs");

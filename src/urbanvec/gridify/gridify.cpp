@@ -47,6 +47,12 @@ struct Frame {
   double minX, maxY, cell;
   int width, height;
   Vec2 toPixel(const Vec2& w) const { return {(w.x - minX) / cell, (maxY - w.y) / cell}; }
+  LineString toWorld(const LineString& pixels) const {
+    LineString out;
+    out.reserve(pixels.size());
+    for (const Vec2& p : pixels) out.push_back({minX + p.x * cell, maxY - p.y * cell});
+    return out;
+  }
   LineString toPixel(const LineString& line) const {
     LineString out;
     out.reserve(line.size());
@@ -260,7 +266,11 @@ GridifyResult gridify(const CityData& city, const GridifyOptions& options, const
   for (std::size_t i = 0; i < city.roads.size(); ++i) {
     if (!roads.rasterized[i]) continue;
     const CityRoad& r = city.roads[i];
-    MultiLineString parts = clipLine(ctx, r.centreline, box);
+    MultiLineString parts;
+    for (const LineString& clipped : clipLine(ctx, r.centreline, box))
+      for (const LineString& onGrid :
+           partsOnRoadCells(frame.toPixel(clipped), roads.classes, options.truthRoadReachCells))
+        parts.push_back(frame.toWorld(onGrid));
     if (parts.empty()) continue;
     ++result.roadsRasterized;
     const std::string cls = r.roadClass == LandUse::PrimaryRoad ? "primary" : "secondary";

@@ -33,6 +33,10 @@ struct GridifyOptions {
   /// widths the grid gives them, and where the vectorizer puts its curbs (spec C).
   double truthCurbPrimaryCells = 1.0;
   double truthCurbSecondaryCells = 0.5;
+  /// Truth roads keep the pieces of their centrelines within this many cells of a road cell's centre:
+  /// the roads the grid holds (a centreline on its own cells is within 0.71 cell; merged carriageways
+  /// and cleared cells leave pieces the grid does not hold).
+  double truthRoadReachCells = 1.0;
 };
 
 struct ParcelRecord {

@@ -27,8 +27,10 @@ bool clipSegment(Vec2& a, Vec2& b, double minX, double minY, double maxX, double
       continue;
     }
     const double t = q[i] / p[i];
-    if (p[i] < 0.0) t0 = std::max(t0, t);
-    else t1 = std::min(t1, t);
+    if (p[i] < 0.0)
+      t0 = std::max(t0, t);
+    else
+      t1 = std::min(t1, t);
     if (t0 > t1) return false;
   }
   const Vec2 start = a + Vec2{dx, dy} * t0;
@@ -56,7 +58,8 @@ std::vector<Cell> polylineCells(const LineString& line, int width, int height) {
 /// 8-neighbourhood, and the background there forms exactly one 8-connected piece, so the removal neither
 /// splits a road nor opens a hole.
 bool isSimple(const Grid<std::uint8_t>& g, int c, int r) {
-  static const std::array<Cell, 8> ring{{{-1, -1}, {0, -1}, {1, -1}, {1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0}}};
+  static const std::array<Cell, 8> ring{
+      {{-1, -1}, {0, -1}, {1, -1}, {1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0}}};
   std::array<bool, 8> fg{};
   for (int i = 0; i < 8; ++i) fg[i] = g.get(c + ring[i].first, r + ring[i].second, 0) != 0;
   // Components among ring cells of one kind; `diagonal` allows 8-adjacency.
@@ -72,7 +75,8 @@ bool isSimple(const Grid<std::uint8_t>& g, int c, int r) {
         stack.pop_back();
         for (int j = 0; j < 8; ++j) {
           if (fg[j] != foreground || component[j] >= 0) continue;
-          const int ddx = std::abs(ring[k].first - ring[j].first), ddy = std::abs(ring[k].second - ring[j].second);
+          const int ddx = std::abs(ring[k].first - ring[j].first),
+                    ddy = std::abs(ring[k].second - ring[j].second);
           if (ddx + ddy == 1 || (diagonal && ddx == 1 && ddy == 1)) {
             component[j] = count;
             stack.push_back(j);
@@ -101,7 +105,8 @@ bool isSimple(const Grid<std::uint8_t>& g, int c, int r) {
 /// left in any such window is one cleared regardless (the width rule wins). Returns the cells cleared.
 std::size_t thinBlocks(Grid<std::uint8_t>& g, std::uint8_t kind) {
   auto allKind = [&](int c, int r) {
-    return g.at(c, r) == kind && g.at(c + 1, r) == kind && g.at(c, r + 1) == kind && g.at(c + 1, r + 1) == kind;
+    return g.at(c, r) == kind && g.at(c + 1, r) == kind && g.at(c, r + 1) == kind &&
+           g.at(c + 1, r + 1) == kind;
   };
   std::size_t removed = 0;
   for (;;) {
@@ -206,9 +211,12 @@ std::size_t cutDiagonals(Grid<std::uint8_t>& g) {
     for (int c = 0; c < g.width; ++c)
       for (int dc : {-1, 1}) {
         if (!road(c, r) || !road(c + dc, r + 1) || road(c + dc, r) || road(c, r + 1)) continue;
-        if (g.at(c + dc, r + 1) == kSecondary) g.at(c + dc, r + 1) = 0;
-        else if (g.at(c, r) == kSecondary) g.at(c, r) = 0;
-        else continue;
+        if (g.at(c + dc, r + 1) == kSecondary)
+          g.at(c + dc, r + 1) = 0;
+        else if (g.at(c, r) == kSecondary)
+          g.at(c, r) = 0;
+        else
+          continue;
         ++cleared;
       }
   return cleared;
@@ -260,15 +268,17 @@ std::size_t trimWidePrimary(Grid<std::uint8_t>& corners, Grid<std::uint8_t>& pri
         candidates.push_back({rank, j, i});
       }
     if (candidates.empty()) return removed;  // cannot happen: painted cells come from corners
-    const Candidate best = *std::min_element(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
-      return std::tie(x.rank, x.j, x.i) < std::tie(y.rank, y.j, y.i);
-    });
+    const Candidate best =
+        *std::min_element(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
+          return std::tie(x.rank, x.j, x.i) < std::tie(y.rank, y.j, y.i);
+        });
     corners.at(best.i, best.j) = 0;
     ++removed;
     for (int r = best.j - 1; r <= best.j; ++r)
       for (int c = best.i - 1; c <= best.i; ++c) {
         if (!primary.inside(c, r)) continue;
-        primary.at(c, r) = corners.at(c, r) || corners.at(c + 1, r) || corners.at(c, r + 1) || corners.at(c + 1, r + 1);
+        primary.at(c, r) =
+            corners.at(c, r) || corners.at(c + 1, r) || corners.at(c, r + 1) || corners.at(c + 1, r + 1);
       }
   }
 }
@@ -320,7 +330,8 @@ RoadRaster rasterizeRoads(const std::vector<PixelRoad>& roads, int width, int he
       LineString shifted;
       for (const Vec2& p : road.line) shifted.push_back(p + Vec2{0.5, 0.5});
       for (const Cell& corner : polylineCells(shifted, width + 1, height + 1)) {
-        if (corner.first < 1 || corner.second < 1 || corner.first >= width || corner.second >= height) continue;
+        if (corner.first < 1 || corner.second < 1 || corner.first >= width || corner.second >= height)
+          continue;
         corners.at(corner.first, corner.second) = 1;
         // The cells around the corner, to tell later whether the road survived.
         roadCells[k].emplace_back(corner.first, corner.second);
@@ -398,6 +409,53 @@ RoadWidthReport checkRoadWidths(const Grid<std::uint8_t>& g) {
     }
   }
   return report;
+}
+
+MultiLineString partsOnRoadCells(const LineString& line, const Grid<std::uint8_t>& classes, double reachCells,
+                                 double stepCells) {
+  const int reach = static_cast<int>(std::ceil(reachCells));
+  auto onRoad = [&](const Vec2& p) {
+    const int pc = static_cast<int>(std::floor(p.x)), pr = static_cast<int>(std::floor(p.y));
+    for (int r = pr - reach; r <= pr + reach; ++r)
+      for (int c = pc - reach; c <= pc + reach; ++c)
+        if (classes.inside(c, r) && classes.at(c, r) != 0 &&
+            distance(p, Vec2(c + 0.5, r + 0.5)) <= reachCells)
+          return true;
+    return false;
+  };
+  MultiLineString parts;
+  LineString run;
+  auto closeRun = [&] {
+    if (run.size() >= 2) parts.push_back(std::move(run));
+    run.clear();
+  };
+  for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+    const Vec2 a = line[i], b = line[i + 1];
+    const int steps = std::max(1, static_cast<int>(std::ceil(distance(a, b) / stepCells)));
+    // The segment's start and its inner samples; the end is the next segment's start.
+    for (int k = 0; k < steps; ++k) {
+      const Vec2 p = a + (b - a) * (static_cast<double>(k) / steps);
+      if (onRoad(p)) {
+        run.push_back(p);
+      } else {
+        closeRun();
+      }
+    }
+  }
+  if (!line.empty() && onRoad(line.back())) run.push_back(line.back());
+  closeRun();
+  // Samples between a segment's ends are collinear: keep the original vertices and the run ends only.
+  for (LineString& part : parts) {
+    LineString kept{part.front()};
+    for (std::size_t k = 1; k + 1 < part.size(); ++k) {
+      const Vec2 u = part[k] - kept.back(), v = part[k + 1] - part[k];
+      if (std::fabs(u.x * v.y - u.y * v.x) > 1e-12 * (length(u) * length(v) + 1e-300))
+        kept.push_back(part[k]);
+    }
+    kept.push_back(part.back());
+    part = std::move(kept);
+  }
+  return parts;
 }
 
 }  // namespace urbanvec::gridify

@@ -52,10 +52,10 @@ RoadRaster rasterizeRoads(const std::vector<PixelRoad>& roads, int width, int he
 
 /// Counts of violations of the road rules in a land-use grid; all zero for a valid grid.
 struct RoadWidthReport {
-  std::size_t secondaryBlocks2x2 = 0;   ///< 2×2 windows whose four cells are all secondary
-  std::size_t primaryOutside2x2 = 0;    ///< primary cells in no all-primary 2×2 window
-  std::size_t primaryBlocks3x3 = 0;     ///< 3×3 windows whose nine cells are all primary
-  std::size_t diagonalOnlyLinks = 0;    ///< diagonal road neighbours with no road cell beside both
+  std::size_t secondaryBlocks2x2 = 0;  ///< 2×2 windows whose four cells are all secondary
+  std::size_t primaryOutside2x2 = 0;   ///< primary cells in no all-primary 2×2 window
+  std::size_t primaryBlocks3x3 = 0;    ///< 3×3 windows whose nine cells are all primary
+  std::size_t diagonalOnlyLinks = 0;   ///< diagonal road neighbours with no road cell beside both
   bool ok() const {
     return secondaryBlocks2x2 == 0 && primaryOutside2x2 == 0 && primaryBlocks3x3 == 0 &&
            diagonalOnlyLinks == 0;
@@ -64,5 +64,12 @@ struct RoadWidthReport {
 
 /// Checks a grid of LandUse codes (docs/gridify.md "Width check").
 RoadWidthReport checkRoadWidths(const Grid<std::uint8_t>& landUse);
+
+/// The pieces of a centreline (pixel coordinates, y down) lying within `reachCells` of the centre
+/// of a road cell of `classes`: the part of the road the grid actually holds. A centreline on its own
+/// rasterized cells is within 0.71 cell of one; a carriageway merged into its neighbour, or cells
+/// cleared to keep widths exact, leave pieces farther away, which no vectorizer can recover.
+MultiLineString partsOnRoadCells(const LineString& line, const Grid<std::uint8_t>& classes, double reachCells,
+                                 double stepCells = 0.25);
 
 }  // namespace urbanvec::gridify

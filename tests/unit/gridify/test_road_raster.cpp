@@ -50,7 +50,8 @@ TEST(TraverseCells, DiagonalBecomesFourConnectedStaircase) {
   ASSERT_EQ(cells.back(), Cell(5, 5));
   EXPECT_EQ(cells.size(), 11u);  // 5 steps right + 5 steps down + start
   for (size_t i = 1; i < cells.size(); ++i)
-    EXPECT_EQ(std::abs(cells[i].first - cells[i - 1].first) + std::abs(cells[i].second - cells[i - 1].second), 1);
+    EXPECT_EQ(std::abs(cells[i].first - cells[i - 1].first) + std::abs(cells[i].second - cells[i - 1].second),
+              1);
 }
 
 TEST(RoadRaster, DiagonalSecondaryIsOneCellWideStaircase) {
@@ -67,8 +68,8 @@ TEST(RoadRaster, DiagonalSecondaryIsOneCellWideStaircase) {
 }
 
 TEST(RoadRaster, PrimaryIsTwoCellsWideEverywhere) {
-  RoadRaster out = rasterizeRoads(
-      {{{{3.2, 4.1}, {30.6, 18.3}, {31.0, 35.2}, {8.4, 37.9}}, LandUse::PrimaryRoad}}, 40, 42);
+  RoadRaster out =
+      rasterizeRoads({{{{3.2, 4.1}, {30.6, 18.3}, {31.0, 35.2}, {8.4, 37.9}}, LandUse::PrimaryRoad}}, 40, 42);
   const RoadWidthReport report = checkRoadWidths(out.classes);
   EXPECT_EQ(report.primaryOutside2x2, 0u);
   EXPECT_EQ(report.primaryBlocks3x3, 0u);
@@ -127,12 +128,33 @@ TEST(RoadRaster, PrimaryWinsOverSecondaryAndClassCodes) {
 TEST(RoadWidthCheck, FindsEachViolation) {
   Grid<std::uint8_t> g(6, 6, 0);
   g.at(1, 1) = g.at(2, 1) = g.at(1, 2) = g.at(2, 2) = 2;  // 2x2 secondary
-  g.at(4, 4) = 3;                                           // lone primary cell
-  g.at(5, 5) = 2;                                           // diagonal-only to (4,4)
+  g.at(4, 4) = 3;                                         // lone primary cell
+  g.at(5, 5) = 2;                                         // diagonal-only to (4,4)
   const RoadWidthReport r = checkRoadWidths(g);
   EXPECT_EQ(r.secondaryBlocks2x2, 1u);
   EXPECT_EQ(r.primaryOutside2x2, 1u);
   EXPECT_EQ(r.diagonalOnlyLinks, 1u);
   Grid<std::uint8_t> wide(4, 4, 3);
   EXPECT_EQ(checkRoadWidths(wide).primaryBlocks3x3, 4u);
+}
+
+TEST(TruthRoads, OnlyThePiecesNearRoadCellsAreKept) {
+  // Road cells along row 2 from column 0 to 9; the centreline follows them, then leaves at column 10
+  // for 10 more cells over land.
+  Grid<std::uint8_t> classes(30, 10, 0);
+  for (int c = 0; c < 10; ++c) classes.at(c, 2) = 2;
+  const LineString line{{0.5, 2.5}, {20.5, 2.5}};
+  const MultiLineString parts = partsOnRoadCells(line, classes, 1.0);
+  ASSERT_EQ(parts.size(), 1u);
+  EXPECT_DOUBLE_EQ(parts[0].front().x, 0.5);
+  // The last road cell's centre is (9.5, 2.5): the kept piece ends at the last quarter-cell sample
+  // within 1 cell of it, 10.5, and keeps no inner vertex on the straight run.
+  EXPECT_NEAR(parts[0].back().x, 10.5, 1e-9);
+  EXPECT_EQ(parts[0].size(), 2u);
+  // A centreline on its own diagonal staircase stays whole.
+  Grid<std::uint8_t> stairs(12, 12, 0);
+  for (int k = 0; k < 10; ++k) stairs.at(k, k) = stairs.at(k + 1, k) = 2;
+  const MultiLineString diagonal = partsOnRoadCells({{0.5, 0.5}, {10.0, 10.0}}, stairs, 1.0);
+  ASSERT_EQ(diagonal.size(), 1u);
+  EXPECT_NEAR(length(diagonal[0]), length(LineString{{0.5, 0.5}, {10.0, 10.0}}), 1e-9);
 }
