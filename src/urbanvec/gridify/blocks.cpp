@@ -39,8 +39,10 @@ std::vector<TruthBlock> roadBlocks(const MultiLineString& roads, const Extent& b
 }
 
 std::vector<TruthBlock> curbBlocks(const std::vector<TruthBlock>& faces, const MultiLineString& roads,
-                                   const std::vector<double>& halfWidths, double minArea) {
+                                   const std::vector<double>& halfWidths, const Extent& box, double minArea) {
   geos::Context ctx;
+  geos::GeomPtr border = ctx.lineString(boxPolygon(box).outer);
+  const double tolerance = 1e-7 * std::fmax(1.0, std::fmax(box.maxX - box.minX, box.maxY - box.minY));
   std::vector<MultiPolygon> corridors;
   corridors.reserve(roads.size());
   for (std::size_t i = 0; i < roads.size(); ++i) {
@@ -60,8 +62,17 @@ std::vector<TruthBlock> curbBlocks(const std::vector<TruthBlock>& faces, const M
           ctx.own(GEOSDifference_r(ctx.handle(), faceGeom.get(), roadSurface.get()), "cut road corridors");
       land = ctx.toPolygons(rest.get());
     }
-    for (Polygon& part : land)
-      if (area(part) >= minArea) blocks.push_back({std::move(part), face.external});
+    for (Polygon& part : land) {
+      if (area(part) < minArea) continue;
+      bool external = face.external;
+      if (external) {
+        geos::GeomPtr partGeom = ctx.polygon(part);
+        double gap = 0.0;
+        GEOSDistance_r(ctx.handle(), partGeom.get(), border.get(), &gap);
+        external = gap <= tolerance;
+      }
+      blocks.push_back({std::move(part), external});
+    }
   }
   return blocks;
 }

@@ -22,8 +22,10 @@ std::vector<TruthBlock> roadBlocks(const MultiLineString& roads, const Extent& b
 /// The land between the curbs: each block minus the road corridors (each centreline buffered by its
 /// half-width in metres, round ends), the way the vectorizer's curbs bound its blocks (spec C: curbs at
 /// 1 cell for primary, 0.5 cell for secondary roads). Pieces smaller than minArea (m²) are dropped;
-/// a face a corridor cuts in two gives two blocks of its kind.
+/// a face a corridor cuts in two gives two blocks. A piece is external when it touches the extent's
+/// border: corridors close the small gaps centrelines leave (ends meeting a road's side), so a piece
+/// of an open face can be enclosed by road surface.
 std::vector<TruthBlock> curbBlocks(const std::vector<TruthBlock>& faces, const MultiLineString& roads,
-                                   const std::vector<double>& halfWidths, double minArea);
+                                   const std::vector<double>& halfWidths, const Extent& box, double minArea);
 
 }  // namespace urbanvec::gridify

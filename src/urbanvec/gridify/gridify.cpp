@@ -289,7 +289,8 @@ GridifyResult gridify(const CityData& city, const GridifyOptions& options, const
   // Faces of the noded network minus water hold the derived parcels; the truth blocks are the land
   // between their curbs.
   std::vector<TruthBlock> blocks = roadBlocks(rasterizedLines, box, waterClipped, kMinBlockArea);
-  const std::vector<TruthBlock> truthBlocks = curbBlocks(blocks, rasterizedLines, curbOffsets, kMinBlockArea);
+  const std::vector<TruthBlock> truthBlocks =
+      curbBlocks(blocks, rasterizedLines, curbOffsets, box, kMinBlockArea);
   reportProgress(progress, 0.6, "parcels");
 
   // Parcels: given ones clipped to the grid, or a tessellation of the blocks.
