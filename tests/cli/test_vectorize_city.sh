@@ -38,6 +38,9 @@ for city in bubenec monaco; do
   # The land-use colours travel with the file.
   styled=$(sql "SELECT COUNT(*) AS n FROM layer_styles WHERE f_table_name = 'parcels' AND styleQML LIKE '%attr=\"land_use\"%'")
   expect_eq "$styled" "1" "$city: parcels style"
+  # A density ramp is there to pick in QGIS, not the default.
+  ramp=$(sql "SELECT COUNT(*) AS n FROM layer_styles WHERE f_table_name = 'parcels' AND styleName = 'parcels density' AND useAsDefault = 0 AND styleQML LIKE '%graduatedSymbol%attr=\"density\"%'")
+  expect_eq "$ramp" "1" "$city: parcels density style"
 done
 
 # Determinism: the same seed gives identical features with 1 and 2 threads.

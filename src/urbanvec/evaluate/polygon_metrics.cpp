@@ -185,6 +185,8 @@ std::string landUseKey(const FieldValue& value) {
     std::string lowered = *text;
     std::transform(lowered.begin(), lowered.end(), lowered.begin(),
                    [](unsigned char c) { return std::tolower(c); });
+    // The vectorizer's "undeveloped" parcels are land without a use, as the grid's "unused" is.
+    if (lowered == "undeveloped") return std::string(landUseName(LandUse::Unused));
     return lowered;
   }
   return "";

@@ -75,7 +75,8 @@ Coverage parcelCoverage(const geos::Context& ctx, const PolygonLayer& parcels, c
                         const Progress& progress = {});
 
 /// A land-use field value as a class name: codes (as in landuse.tif) and names in any spelling give
-/// landUseName(); other text is kept in lower case; null gives "".
+/// landUseName(); "undeveloped" (the vectorizer's parcels without a use) gives "unused"; other text is
+/// kept in lower case; null gives "".
 std::string landUseKey(const FieldValue& value);
 
 /// Sum over classes of |a share - b share|, shares being area / total area of each side (0..2);

@@ -9,6 +9,7 @@
 #include <cctype>
 #include <filesystem>
 #include <memory>
+#include <tuple>
 
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/io/gdal_init.hpp"
@@ -25,12 +26,18 @@ using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
 
 OGRwkbGeometryType ogrType(GeometryType t) {
   switch (t) {
-    case GeometryType::None: return wkbNone;
-    case GeometryType::Point: return wkbPoint;
-    case GeometryType::LineString: return wkbLineString;
-    case GeometryType::Polygon: return wkbPolygon;
-    case GeometryType::MultiPolygon: return wkbMultiPolygon;
-    case GeometryType::MultiLineString: return wkbMultiLineString;
+    case GeometryType::None:
+      return wkbNone;
+    case GeometryType::Point:
+      return wkbPoint;
+    case GeometryType::LineString:
+      return wkbLineString;
+    case GeometryType::Polygon:
+      return wkbPolygon;
+    case GeometryType::MultiPolygon:
+      return wkbMultiPolygon;
+    case GeometryType::MultiLineString:
+      return wkbMultiLineString;
   }
   return wkbUnknown;
 }
@@ -56,7 +63,9 @@ std::unique_ptr<OGRPolygon> toOgrPolygon(const Polygon& polygon) {
 std::unique_ptr<OGRGeometry> toOgr(const Geometry& geometry) {
   struct Visitor {
     std::unique_ptr<OGRGeometry> operator()(std::monostate) const { return nullptr; }
-    std::unique_ptr<OGRGeometry> operator()(const Vec2& p) const { return std::make_unique<OGRPoint>(p.x, p.y); }
+    std::unique_ptr<OGRGeometry> operator()(const Vec2& p) const {
+      return std::make_unique<OGRPoint>(p.x, p.y);
+    }
     std::unique_ptr<OGRGeometry> operator()(const LineString& l) const {
       auto line = std::make_unique<OGRLineString>();
       fillLine(*line, l);
@@ -107,8 +116,10 @@ Geometry fromOgr(const OGRGeometry* geometry) {
       const auto* p = geometry->toPoint();
       return Vec2{p->getX(), p->getY()};
     }
-    case wkbLineString: return fromCurve(*geometry->toLineString());
-    case wkbPolygon: return fromOgrPolygon(*geometry->toPolygon());
+    case wkbLineString:
+      return fromCurve(*geometry->toLineString());
+    case wkbPolygon:
+      return fromOgrPolygon(*geometry->toPolygon());
     case wkbMultiPolygon: {
       MultiPolygon out;
       for (const OGRPolygon* p : *geometry->toMultiPolygon()) out.push_back(fromOgrPolygon(*p));
@@ -142,7 +153,8 @@ Geometry fromOgr(const OGRGeometry* geometry) {
       if (!lines.empty()) return lines;
       return std::monostate{};
     }
-    default: return std::monostate{};
+    default:
+      return std::monostate{};
   }
 }
 
@@ -174,8 +186,11 @@ void writeLayerStyles(GDALDataset& ds, const std::map<std::string, std::string>&
   if (styles.empty()) return;
   OGRLayer* table = ds.CreateLayer(kStyleTable, nullptr, wkbNone, nullptr);
   if (!table) throw ioError("cannot create the layer_styles table (" + std::string(lastGdalMessage()) + ")");
-  const char* names[] = {"f_table_catalog", "f_table_schema", "f_table_name", "f_geometry_column",
-                         "styleName", "styleQML", "styleSLD", "description", "owner", "ui"};
+  const char* names[] = {"f_table_catalog", "f_table_schema",
+                         "f_table_name",    "f_geometry_column",
+                         "styleName",       "styleQML",
+                         "styleSLD",        "description",
+                         "owner",           "ui"};
   for (const char* n : names) {
     OGRFieldDefn f(n, OFTString);
     table->CreateField(&f);
@@ -185,17 +200,23 @@ void writeLayerStyles(GDALDataset& ds, const std::map<std::string, std::string>&
   table->CreateField(&useAsDefault);
   OGRFieldDefn updated("update_time", OFTDateTime);
   table->CreateField(&updated);
+  std::vector<std::tuple<std::string, std::string, std::string, bool>> rows;  // layer, style, QML, default
   for (const auto& [layerName, qml] : styles) {
+    rows.emplace_back(layerName, layerName, qml, true);
+    for (const auto& [styleName, alternative] : alternativeStylesFor(layerName))
+      rows.emplace_back(layerName, styleName, alternative, false);
+  }
+  for (const auto& [layerName, styleName, qml, isDefault] : rows) {
     OGRFeature feature(table->GetLayerDefn());
     feature.SetField("f_table_catalog", "");
     feature.SetField("f_table_schema", "");
     feature.SetField("f_table_name", layerName.c_str());
     feature.SetField("f_geometry_column", "geom");
-    feature.SetField("styleName", layerName.c_str());
+    feature.SetField("styleName", styleName.c_str());
     feature.SetField("styleQML", qml.c_str());
     feature.SetField("styleSLD", "");
-    feature.SetField("useAsDefault", 1);
-    feature.SetField("description", "urbanvec default style");
+    feature.SetField("useAsDefault", isDefault ? 1 : 0);
+    feature.SetField("description", isDefault ? "urbanvec default style" : "urbanvec style");
     feature.SetField("owner", "");
     feature.SetField("ui", "");
     feature.SetField("update_time", 2026, 1, 1, 0, 0, 0, 0);
@@ -239,7 +260,8 @@ void writeVectorDataset(const std::string& path, const std::vector<Layer>& layer
   for (const Layer& layer : layers) {
     CPLStringList lco;
     for (const std::string& kv : options.layerCreationOptions) lco.AddString(kv.c_str());
-    OGRLayer* out = ds->CreateLayer(layer.name.c_str(), hasSrs && layer.geometryType != GeometryType::None ? &srs : nullptr,
+    OGRLayer* out = ds->CreateLayer(layer.name.c_str(),
+                                    hasSrs && layer.geometryType != GeometryType::None ? &srs : nullptr,
                                     ogrType(layer.geometryType), lco.List());
     if (!out)
       throw ioError("cannot create layer '" + layer.name + "' in '" + path + "' (" + lastGdalMessage() + ")");
@@ -258,15 +280,20 @@ void writeVectorDataset(const std::string& path, const std::vector<Layer>& layer
         std::visit(
             [&](const auto& v) {
               using V = std::decay_t<decltype(v)>;
-              if constexpr (std::is_same_v<V, std::monostate>) f.SetFieldNull(idx);
-              else if constexpr (std::is_same_v<V, std::int64_t>) f.SetField(idx, static_cast<GIntBig>(v));
-              else if constexpr (std::is_same_v<V, double>) f.SetField(idx, v);
-              else f.SetField(idx, v.c_str());
+              if constexpr (std::is_same_v<V, std::monostate>)
+                f.SetFieldNull(idx);
+              else if constexpr (std::is_same_v<V, std::int64_t>)
+                f.SetField(idx, static_cast<GIntBig>(v));
+              else if constexpr (std::is_same_v<V, double>)
+                f.SetField(idx, v);
+              else
+                f.SetField(idx, v.c_str());
             },
             feature.values[i]);
       }
       if (auto g = toOgr(feature.geometry)) {
-        if (layer.geometryType == GeometryType::MultiPolygon && wkbFlatten(g->getGeometryType()) == wkbPolygon)
+        if (layer.geometryType == GeometryType::MultiPolygon &&
+            wkbFlatten(g->getGeometryType()) == wkbPolygon)
           g.reset(OGRGeometryFactory::forceToMultiPolygon(g.release()));
         f.SetGeometryDirectly(g.release());
       }
@@ -306,19 +333,19 @@ std::optional<LayerRead> readVectorLayer(const std::string& path, const std::str
   Layer& layer = result.layer;
   layer.name = layerName;
   const OGRwkbGeometryType type = wkbFlatten(in->GetGeomType());
-  layer.geometryType = type == wkbNone ? GeometryType::None
-                       : type == wkbPoint ? GeometryType::Point
-                       : type == wkbLineString ? GeometryType::LineString
-                       : type == wkbPolygon ? GeometryType::Polygon
+  layer.geometryType = type == wkbNone              ? GeometryType::None
+                       : type == wkbPoint           ? GeometryType::Point
+                       : type == wkbLineString      ? GeometryType::LineString
+                       : type == wkbPolygon         ? GeometryType::Polygon
                        : type == wkbMultiLineString ? GeometryType::MultiLineString
                                                     : GeometryType::MultiPolygon;
   OGRFeatureDefn* defn = in->GetLayerDefn();
   for (int i = 0; i < defn->GetFieldCount(); ++i) {
     const OGRFieldType t = defn->GetFieldDefn(i)->GetType();
-    layer.fields.push_back({defn->GetFieldDefn(i)->GetNameRef(),
-                            t == OFTInteger || t == OFTInteger64 ? FieldType::Integer
-                            : t == OFTReal                      ? FieldType::Real
-                                                                : FieldType::String});
+    layer.fields.push_back({defn->GetFieldDefn(i)->GetNameRef(), t == OFTInteger || t == OFTInteger64
+                                                                     ? FieldType::Integer
+                                                                 : t == OFTReal ? FieldType::Real
+                                                                                : FieldType::String});
   }
   std::unique_ptr<OGRCoordinateTransformation> transform;
   if (const OGRSpatialReference* srs = in->GetSpatialRef()) {
@@ -333,7 +360,8 @@ std::optional<LayerRead> readVectorLayer(const std::string& path, const std::str
       target.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
       transform.reset(OGRCreateCoordinateTransformation(&source, &target));
       if (!transform)
-        throw invalidInput(role + " '" + path + "': cannot transform layer '" + layerName + "' to the output CRS");
+        throw invalidInput(role + " '" + path + "': cannot transform layer '" + layerName +
+                           "' to the output CRS");
     }
   }
   in->ResetReading();
@@ -342,11 +370,20 @@ std::optional<LayerRead> readVectorLayer(const std::string& path, const std::str
     std::unique_ptr<OGRFeature> f(raw);
     Feature out;
     for (int i = 0; i < defn->GetFieldCount(); ++i) {
-      if (!f->IsFieldSetAndNotNull(i)) { out.values.emplace_back(std::monostate{}); continue; }
+      if (!f->IsFieldSetAndNotNull(i)) {
+        out.values.emplace_back(std::monostate{});
+        continue;
+      }
       switch (layer.fields[static_cast<size_t>(i)].type) {
-        case FieldType::Integer: out.values.emplace_back(static_cast<std::int64_t>(f->GetFieldAsInteger64(i))); break;
-        case FieldType::Real: out.values.emplace_back(f->GetFieldAsDouble(i)); break;
-        case FieldType::String: out.values.emplace_back(std::string(f->GetFieldAsString(i))); break;
+        case FieldType::Integer:
+          out.values.emplace_back(static_cast<std::int64_t>(f->GetFieldAsInteger64(i)));
+          break;
+        case FieldType::Real:
+          out.values.emplace_back(f->GetFieldAsDouble(i));
+          break;
+        case FieldType::String:
+          out.values.emplace_back(std::string(f->GetFieldAsString(i)));
+          break;
       }
     }
     if (OGRGeometry* g = f->GetGeometryRef()) {

@@ -2,6 +2,7 @@
 // initial round of land use assignments").
 #include "urbanvec/vectorize/undeveloped_parcels.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace urbanvec::vectorize::parcels {
@@ -10,14 +11,33 @@ double undevelopedShare(const SimBlockSummary& sim) {
   return sim.area > 0.0 ? sim.undevelopedArea / sim.area : 0.0;
 }
 
+double unlistedUndevelopedShare(const SimBlockSummary& sim) {
+  double listed = 0.0;
+  for (const SimParcel& p : sim.parcels)
+    if (p.use == LandUse::Unused) listed += p.cells;
+  return sim.area > 0.0 ? std::fmax(0.0, sim.undevelopedArea - listed) / sim.area : 0.0;
+}
+
+int listedUnusedParcels(const SimBlockSummary& sim) {
+  int n = 0;
+  for (const SimParcel& p : sim.parcels) n += p.use == LandUse::Unused;
+  return n;
+}
+
 bool needsUndevelopedExtras(const SimBlockSummary& sim, const UndevelopedOptions& options) {
-  return undevelopedShare(sim) > options.triggerShare;
+  const double share =
+      options.skipListedUnusedParcels ? unlistedUndevelopedShare(sim) : undevelopedShare(sim);
+  return share > options.triggerShare;
 }
 
 int undevelopedExtraParcels(const SimBlockSummary& sim, int undevelopedParcels,
                             const UndevelopedOptions& options) {
-  if (!needsUndevelopedExtras(sim, options) || undevelopedParcels <= 0) return 0;
-  return static_cast<int>(std::lround(undevelopedParcels * (options.multiplier - 1.0)));
+  if (!needsUndevelopedExtras(sim, options)) return 0;
+  const int doubled = options.skipListedUnusedParcels
+                          ? std::max(0, undevelopedParcels - listedUnusedParcels(sim))
+                          : undevelopedParcels;
+  if (doubled <= 0) return 0;
+  return static_cast<int>(std::lround(doubled * (options.multiplier - 1.0)));
 }
 
 }  // namespace urbanvec::vectorize::parcels

@@ -13,15 +13,27 @@ struct UndevelopedOptions {
   double triggerShare = 0.25;
   /// The undeveloped parcel count is multiplied by this (spec §5.4: ×2).
   double multiplier = 2.0;
+  /// [INFERENCE] The heuristic makes up for undeveloped land the simulation lists no parcels for
+  /// ("the simulation does not output undeveloped parcels"). When the input does list parcels of
+  /// use unused (cadastral plots without a use), their land already has its parcels: it counts
+  /// towards neither the trigger nor the doubling. false = the documents' rule on all unused land.
+  bool skipListedUnusedParcels = true;
 };
 
 /// Undeveloped area / simulated block area (0 for an empty block).
 double undevelopedShare(const SimBlockSummary& sim);
 
+/// The undeveloped area no listed parcel covers / simulated block area (0 for an empty block).
+double unlistedUndevelopedShare(const SimBlockSummary& sim);
+
+/// Parcels of use unused listed by the simulation in the block.
+int listedUnusedParcels(const SimBlockSummary& sim);
+
 /// Whether the block gets extra undeveloped parcels.
 bool needsUndevelopedExtras(const SimBlockSummary& sim, const UndevelopedOptions& options);
 
-/// How many extra splits turn `undevelopedParcels` into multiplier × as many (0 when not triggered).
+/// How many extra splits turn `undevelopedParcels` (less the listed unused parcels when
+/// skipListedUnusedParcels) into multiplier × as many (0 when not triggered).
 int undevelopedExtraParcels(const SimBlockSummary& sim, int undevelopedParcels,
                             const UndevelopedOptions& options);
 

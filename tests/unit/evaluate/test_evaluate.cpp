@@ -239,7 +239,10 @@ TEST(Parcels, LandUseCodesAndNamesAgree) {
   EXPECT_EQ(landUseKey(FieldValue{std::int64_t{4}}), "residential");
   EXPECT_EQ(landUseKey(FieldValue{std::string("Residential")}), "residential");
   EXPECT_EQ(landUseKey(FieldValue{std::int64_t{7}}), "park");
-  EXPECT_EQ(landUseKey(FieldValue{std::string("Undeveloped")}), "undeveloped");
+  // The vectorizer's parcels without a use compare with the grid's unused land.
+  EXPECT_EQ(landUseKey(FieldValue{std::string("Undeveloped")}), "unused");
+  EXPECT_EQ(landUseKey(FieldValue{std::int64_t{0}}), "unused");
+  EXPECT_EQ(landUseKey(FieldValue{std::string("gardens")}), "gardens");
   EXPECT_EQ(landUseKey(FieldValue{}), "");
   EXPECT_DOUBLE_EQ(landUseShareError({{"residential", 3}, {"park", 1}}, {{"residential", 1}, {"park", 1}}),
                    0.5);

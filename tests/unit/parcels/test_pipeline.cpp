@@ -168,6 +168,25 @@ TEST(Pipeline, UndevelopedBlocksGetExtraUndevelopedParcels) {
   EXPECT_GT(out.report.targetParcels, 3);
 }
 
+TEST(Pipeline, ListedUnusedParcelsAreNotDoubled) {
+  // The same half-unused block, but its unused land is listed as two parcels of use unused, as
+  // cadastral plots without a use are: the block gets exactly its five listed parcels.
+  geos::Context geos;
+  ParcelBlock block = fixtures::stripBlock(
+      16, 6,
+      {LandUse::Residential, LandUse::Unused, LandUse::Commercial, LandUse::Unused, LandUse::Residential});
+  for (SimParcel& p : block.sim.parcels) p.cells = p.use == LandUse::Unused ? 24 : 16;
+  block.sim.developedArea = 48;
+  block.sim.undevelopedArea = 48;
+  ParcelsOptions options;
+  const BlockParcels out = parcelBlock(block, options, geos);
+  EXPECT_EQ(out.report.targetParcels, 5);
+  EXPECT_EQ(static_cast<int>(out.parcels.size()), 5) << out.report.shortfall;
+  // The documents' rule alone doubles the undeveloped parcels.
+  options.undeveloped.skipListedUnusedParcels = false;
+  EXPECT_GT(parcelBlock(block, options, geos).report.targetParcels, 5);
+}
+
 TEST(Pipeline, BlockWithAHoleIsTiledExactly) {
   geos::Context geos;
   ParcelBlock block = fixtures::stripBlock(
