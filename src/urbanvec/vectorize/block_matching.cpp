@@ -16,7 +16,7 @@ namespace urbanvec::vectorize {
 
 BlockMatching matchSimulatedBlocks(const std::vector<Polygon>& vectorBlocks, const SimulatedCity& city,
                                    const Grid<int>& blockOfCell, const std::vector<int>& preMatched,
-                                   const Progress& progress) {
+                                   const Progress& progress, const BlockMatchingOptions& options) {
   if (!preMatched.empty() && preMatched.size() != city.blocks.size())
     throw internalError("matchSimulatedBlocks: preMatched needs one entry per simulated block.");
   geos::Context ctx;
@@ -108,6 +108,28 @@ BlockMatching matchSimulatedBlocks(const std::vector<Polygon>& vectorBlocks, con
       }
       rule = MatchRule::ParcelCentre;
     }
+    if (v >= 0 && options.minShareOfCells > 0.0 && block.cells.size() > 1) {
+      // Where a deterministic, even sample of the block's cells lies.
+      const size_t n = block.cells.size();
+      const size_t counted = std::min(n, static_cast<size_t>(std::max(1, options.maxCellsCounted)));
+      std::map<int, size_t> cellsIn;
+      for (size_t k = 0; k < counted; ++k) {
+        const int w = locate(cellCentre(block.cells[k * n / counted], h));
+        if (w >= 0) ++cellsIn[w];
+      }
+      const size_t picked = cellsIn.count(v) ? cellsIn[v] : 0;
+      if (static_cast<double>(picked) < options.minShareOfCells * static_cast<double>(counted)) {
+        int most = v;
+        size_t mostCells = picked;
+        for (const auto& [w, c] : cellsIn)
+          if (c > mostCells) most = w, mostCells = c;
+        if (most != v) {
+          v = most;
+          rule = MatchRule::Majority;
+          ++out.majorityUses;
+        }
+      }
+    }
     if (v < 0) {
       std::vector<std::pair<double, size_t>> cells;
       for (size_t k = 0; k < block.cells.size(); ++k)
@@ -126,6 +148,7 @@ BlockMatching matchSimulatedBlocks(const std::vector<Polygon>& vectorBlocks, con
       if (it != centroidIndex.end()) v = it->second;
       rule = MatchRule::Failsafe;
       ++out.failsafeUses;
+      if (!block.parcelIds.empty()) ++out.failsafeWithParcels;
     }
     out.vectorBlockOfSim[bi] = v;
     out.rule[bi] = rule;

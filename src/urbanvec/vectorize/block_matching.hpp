@@ -4,6 +4,8 @@
 //   2. parcel rule: otherwise the parcel centre closest to the block centre that lies in the block
 //      ([INFERENCE] then the block's own cell centres, nearest first);
 //   3. failsafe: the vector block whose centroid is closest to the block centre, counted.
+// [INFERENCE] A centre or parcel pick holding under half the block's cells gives way to the vector
+// block holding most of them (BlockMatchingOptions).
 // All coordinates are in the internal frame of spec §0 (cells).
 #pragma once
 
@@ -16,13 +18,37 @@
 
 namespace urbanvec::vectorize {
 
-enum class MatchRule : unsigned char { None, WaterSplit, Centre, ParcelCentre, CellCentre, Failsafe };
+enum class MatchRule : unsigned char {
+  None,
+  WaterSplit,
+  Centre,
+  ParcelCentre,
+  CellCentre,
+  Failsafe,
+  Majority
+};
+
+struct BlockMatchingOptions {
+  /// [INFERENCE, beyond the documents] The centre and parcel rules stand in for "the vector block
+  /// this simulated block became". When the vector block they pick holds less than this share of the
+  /// simulated block's cells (a crescent-shaped block whose centre falls in a sliver the roads cut
+  /// off), the vector block holding the most of its cells is taken instead; 0 = the documents' rules
+  /// only. Unitless, 0..1.
+  double minShareOfCells = 0.5;
+  /// At most this many of a block's cells are located to count the shares (an even, deterministic
+  /// sample of larger blocks), so the check stays linear in the grid.
+  int maxCellsCounted = 400;
+};
 
 struct BlockMatching {
   /// Per simulated block (index into SimulatedCity::blocks): the vector block index, -1 if none.
   std::vector<int> vectorBlockOfSim;
   std::vector<MatchRule> rule;  ///< how each simulated block was matched
   int failsafeUses = 0;
+  /// Of the failsafe uses, simulated blocks listing at least one parcel (the others carry no parcels
+  /// to place: unused land the roads and pavement took).
+  int failsafeWithParcels = 0;
+  int majorityUses = 0;  ///< centre or parcel picks overruled by BlockMatchingOptions::minShareOfCells
   /// Simulated blocks that were matched (all with at least one cell when any vector block exists).
   int matched = 0;
 };
@@ -31,6 +57,6 @@ struct BlockMatching {
 /// (an empty vector means none).
 BlockMatching matchSimulatedBlocks(const std::vector<Polygon>& vectorBlocks, const SimulatedCity& city,
                                    const Grid<int>& blockOfCell, const std::vector<int>& preMatched,
-                                   const Progress& progress = {});
+                                   const Progress& progress = {}, const BlockMatchingOptions& options = {});
 
 }  // namespace urbanvec::vectorize

@@ -110,9 +110,11 @@ BlocksResult vectorizeBlocks(const RoadNetwork& network, const SimulatedCity& ci
       preMatchedCells[sim] = cells;
     }
   }
-  result.matching =
-      matchSimulatedBlocks(vectorBlocks, city, blockOfCell, preMatched, subProgress(progress, 0.85, 0.95));
+  result.matching = matchSimulatedBlocks(vectorBlocks, city, blockOfCell, preMatched,
+                                         subProgress(progress, 0.85, 0.95), options.matching);
   stats.failsafeUses = result.matching.failsafeUses;
+  stats.failsafeWithParcels = result.matching.failsafeWithParcels;
+  stats.majorityUses = result.matching.majorityUses;
   stats.matchedSimulatedBlocks = result.matching.matched;
 
   // Output layers and per-block data.

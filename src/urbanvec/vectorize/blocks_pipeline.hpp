@@ -27,6 +27,7 @@ struct BlocksOptions {
   BlockOutlineOptions outline;     ///< stage D1
   WaterSplitOptions water;         ///< stage D2
   ExternalBlocksOptions external;  ///< stages D3 + D4
+  BlockMatchingOptions matching;   ///< stage D5
 };
 
 /// What the next stages need about one block, aligned with the features of BlocksResult::blocks.
@@ -49,6 +50,8 @@ struct BlocksStats {
   int simulatedBlocks = 0;
   int matchedSimulatedBlocks = 0;
   int failsafeUses = 0;          ///< D5 failsafe matches
+  int failsafeWithParcels = 0;   ///< of those, simulated blocks listing parcels
+  int majorityUses = 0;          ///< D5 centre/parcel picks overruled by the cell majority
   int boundaryLines = 0;         ///< perimeter-class segments
   int deletedBoundaryLines = 0;  ///< removed by D3
   int droppedExternalFaces = 0;  ///< D4 faces that were not external land

@@ -728,3 +728,40 @@ TEST(BlockOutline, FacesBelowTheMinimumAreaGoBackToThePavement) {
   EXPECT_NEAR(sum, unionArea(g.pieces), 1e-6);  // still no overlap
   EXPECT_TRUE(outlineBlocks(g.pieces, coarse).slivers.empty());
 }
+
+TEST(BlockMatching, CentreInASliverGivesWayToTheBlockHoldingMostCells) {
+  // A simulated block: a 2-wide square ring (72 cells) and a 3x3 core (9 cells) in its middle. Its
+  // centre lies in the core, which the roads cut off as a small vector block of its own.
+  const int size = 13;
+  SimulatedCity city;
+  city.grid = Grid<LandUse>(size, size, LandUse::Residential);
+  SimulatedBlock block;
+  block.id = 1;
+  Vec2 sum(0, 0);
+  for (int r = 1; r <= 11; ++r)
+    for (int c = 1; c <= 11; ++c) {
+      const bool ring = c <= 2 || c >= 10 || r <= 2 || r >= 10;
+      const bool core = c >= 5 && c <= 7 && r >= 5 && r <= 7;
+      if (!ring && !core) continue;
+      block.cells.push_back({c, r});
+      sum += cellCentre({c, r}, size);
+    }
+  block.centre = sum * (1.0 / static_cast<double>(block.cells.size()));
+  city.blocks.push_back(block);
+  Grid<int> blockOfCell(size, size, -1);
+  for (const GridCell& c : block.cells) blockOfCell.at(c.col, c.row) = 0;
+  Polygon ring = box(0.5, 0.5, 12.5, 12.5);
+  ring.holes.push_back(box(3.5, 3.5, 9.5, 9.5).outer);
+  const std::vector<Polygon> vectorBlocks = {box(4, 4, 9, 9), ring};
+
+  const BlockMatching m = matchSimulatedBlocks(vectorBlocks, city, blockOfCell, {});
+  EXPECT_EQ(m.vectorBlockOfSim[0], 1);
+  EXPECT_EQ(m.rule[0], MatchRule::Majority);
+  EXPECT_EQ(m.majorityUses, 1);
+  // The documents' centre rule alone keeps the sliver.
+  BlockMatchingOptions documentsOnly;
+  documentsOnly.minShareOfCells = 0.0;
+  const BlockMatching d = matchSimulatedBlocks(vectorBlocks, city, blockOfCell, {}, {}, documentsOnly);
+  EXPECT_EQ(d.vectorBlockOfSim[0], 0);
+  EXPECT_EQ(d.rule[0], MatchRule::Centre);
+}
