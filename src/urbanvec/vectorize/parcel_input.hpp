@@ -144,6 +144,7 @@ struct BlockReport {
   double cost = 0.0, costUse = 0.0, costDistance = 0.0, costSize = 0.0;  ///< of the kept try
   int splitAttempts = 0;  ///< E2 split attempts over all tries (accepted + rejected), for profiling
   int shortTries = 0;     ///< tries that ended below their target parcel count
+  int relaxedRules = 0;   ///< relaxation rounds the kept result needed (ParcelsOptions::relaxationRounds)
   bool hasSpine = false;
   bool spineDiscarded = false;  ///< spine built but not used for parcels (spec E1 end-count rule)
   /// Empty when parcels == targetParcels; otherwise why fewer parcels were made.

@@ -34,6 +34,8 @@ int countUndeveloped(const std::vector<UseChoice>& uses) {
 
 void validateParcelsOptions(const ParcelsOptions& o) {
   if (o.tries < 1) throw invalidOption("-tries must be at least 1, got " + std::to_string(o.tries) + ".");
+  if (o.relaxationRounds < 0 || o.relaxedTries < 1)
+    throw invalidOption("relaxation rounds must be non-negative and relaxed tries at least 1.");
   if (o.threads < 0) throw invalidOption("the thread count must be 0 (all cores) or more.");
   if (o.spine.pixelsPerCell < 1 || o.spine.pixelsPerCell > 64)
     throw invalidOption("the spine resolution must be 1 to 64 pixels per cell.");
@@ -97,7 +99,12 @@ BlockParcels parcelBlock(const ParcelBlock& block, const ParcelsOptions& options
   MultiPolygon initial = spineParcels.used ? spineParcels.parcels : MultiPolygon{block.polygon};
 
   const RoadFrontage frontage(geos, block.roadFacing, options.regular.frontageTolerance);
-  const SplitRules rules = splitRules(sim, options.regular);
+  SplitRules rules = splitRules(sim, options.regular);
+  if (options.regular.scaleMinAreaToBlock) {
+    double simParcelArea = 0.0;
+    for (const SimParcel& p : sim.parcels) simParcelArea += p.cells;
+    if (simParcelArea > blockArea && simParcelArea > 0.0) rules.minArea *= blockArea / simParcelArea;
+  }
   const UseModel model = buildUseModel(sim, options.landUse);
 
   struct Best {
@@ -109,43 +116,57 @@ BlockParcels parcelBlock(const ParcelBlock& block, const ParcelsOptions& options
     std::vector<SubdivisionParcel> parcels;
     std::vector<UseChoice> uses;
     std::string shortfall;
+    int relaxed = 0;
   } best;
 
-  for (int attempt = 0; attempt < options.tries; ++attempt) {
-    std::vector<SubdivisionParcel> parcels;
-    for (const Polygon& p : initial) parcels.emplace_back(p);
-    SplitStats stats;
-    int target = std::max(simCount, static_cast<int>(parcels.size()));
-    subdivide(parcels, target, rules, options.regular, frontage, geos, rng, stats);  // E2
-    std::vector<UseParcel> described = useParcels(parcels);
-    std::vector<UseChoice> uses = assignLandUse(described, blockArea, model, options.landUse, rng);  // E4
-    const int extra = undevelopedExtraParcels(sim, countUndeveloped(uses), options.undeveloped);     // E3
-    if (extra > 0) {
-      target += extra;
-      subdivide(parcels, target, rules, options.regular, frontage, geos, rng, stats);
-      described = useParcels(parcels);
-      uses = assignLandUse(described, blockArea, model, options.landUse, rng);
+  auto runTries = [&](const SplitRules& rules, int tries, int relaxed) {
+    for (int attempt = 0; attempt < tries; ++attempt) {
+      std::vector<SubdivisionParcel> parcels;
+      for (const Polygon& p : initial) parcels.emplace_back(p);
+      SplitStats stats;
+      int target = std::max(simCount, static_cast<int>(parcels.size()));
+      subdivide(parcels, target, rules, options.regular, frontage, geos, rng, stats);  // E2
+      std::vector<UseParcel> described = useParcels(parcels);
+      std::vector<UseChoice> uses = assignLandUse(described, blockArea, model, options.landUse, rng);  // E4
+      const int extra = undevelopedExtraParcels(sim, countUndeveloped(uses), options.undeveloped);     // E3
+      if (extra > 0) {
+        target += extra;
+        subdivide(parcels, target, rules, options.regular, frontage, geos, rng, stats);
+        described = useParcels(parcels);
+        uses = assignLandUse(described, blockArea, model, options.landUse, rng);
+      }
+      const Cost cost =
+          scoreParcels(described, uses, blockArea, diagonal, model, sim, options.scoring);  // E5
+      const int missing = std::max(0, target - static_cast<int>(parcels.size()));
+      ++report.tries;
+      report.splitAttempts += stats.accepted;
+      for (int r : stats.rejected) report.splitAttempts += r;
+      report.shortTries += missing > 0;
+      // [INFERENCE] a complete subdivision beats any short one; among equals the lower cost wins.
+      // A relaxed round only replaces the result of an earlier round by making more parcels.
+      if (!best.set || missing < best.missing ||
+          (missing == best.missing && relaxed == best.relaxed && cost.total() < best.cost)) {
+        best.set = true;
+        best.missing = missing;
+        best.cost = cost.total();
+        best.parts = cost;
+        best.target = target;
+        best.parcels = std::move(parcels);
+        best.uses = std::move(uses);
+        best.shortfall =
+            missing > 0 ? (rules.minFrontage > 0.0 && frontage.empty() ? "block has no road-facing boundary"
+                                                                       : stats.shortfallReason())
+                        : std::string();
+        best.relaxed = relaxed;
+      }
     }
-    const Cost cost = scoreParcels(described, uses, blockArea, diagonal, model, sim, options.scoring);  // E5
-    const int missing = std::max(0, target - static_cast<int>(parcels.size()));
-    ++report.tries;
-    report.splitAttempts += stats.accepted;
-    for (int r : stats.rejected) report.splitAttempts += r;
-    report.shortTries += missing > 0;
-    // [INFERENCE] a complete subdivision beats any short one; among equals the lower cost wins.
-    if (!best.set || missing < best.missing || (missing == best.missing && cost.total() < best.cost)) {
-      best.set = true;
-      best.missing = missing;
-      best.cost = cost.total();
-      best.parts = cost;
-      best.target = target;
-      best.parcels = std::move(parcels);
-      best.uses = std::move(uses);
-      best.shortfall =
-          missing > 0 ? (rules.minFrontage > 0.0 && frontage.empty() ? "block has no road-facing boundary"
-                                                                     : stats.shortfallReason())
-                      : std::string();
-    }
+  };
+  runTries(rules, options.tries, 0);
+  SplitRules relaxedRules = rules;
+  for (int round = 1; round <= options.relaxationRounds && best.missing > 0; ++round) {
+    relaxedRules.minArea *= 0.5;
+    relaxedRules.aspectThreshold *= 0.5;
+    runTries(relaxedRules, options.relaxedTries, round);
   }
 
   // E6 on the kept result.
@@ -167,6 +188,7 @@ BlockParcels parcelBlock(const ParcelBlock& block, const ParcelsOptions& options
   report.costDistance = best.parts.distance;
   report.costSize = best.parts.size;
   report.shortfall = best.shortfall;
+  report.relaxedRules = best.relaxed;
   report.ignoredPopulation = population.ignoredPopulation;
   report.ignoredUses = population.ignoredUses;
   return out;

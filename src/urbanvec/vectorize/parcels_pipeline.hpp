@@ -29,6 +29,12 @@ struct ParcelsOptions {
   ScoringOptions scoring;                    ///< E5
   /// Generate-and-test iterations per block; the lowest cost is kept (spec §5.4: 50; `-tries`).
   int tries = 50;
+  /// [INFERENCE, beyond the documents] When every try ends short of its target, up to this many
+  /// rounds of `relaxedTries` tries follow, each halving the size (constraint 1) and rectangularity
+  /// (constraint 3) thresholds of the round before; road access (constraint 2) is never relaxed. The
+  /// report's relaxed_rules says how many rounds the kept result needed. 0 = the documents' rules.
+  int relaxationRounds = 2;
+  int relaxedTries = 10;
   /// Run seed (`-seed`); block b uses deriveSeed(seed, b.blockId).
   std::uint64_t seed = 0;
   /// Worker threads; 0 = all cores. Does not change the output.

@@ -19,6 +19,10 @@ struct RegularSubdivisionOptions {
   /// Constraint 1: each new parcel is at least this share of the smallest simulated parcel (spec
   /// §5.4: 75%), unitless.
   double minAreaFraction = 0.75;
+  /// [INFERENCE] Constraint 1 shrinks with the vector block when the block is smaller than the
+  /// simulated parcels it must hold (an external block the perimeter cut, a block the pavement
+  /// narrowed): the threshold is multiplied by min(1, block area / their total area).
+  bool scaleMinAreaToBlock = true;
   /// Constraint 2: longest contiguous road frontage of each new parcel (spec §5.4: 0.5 pw), cells.
   double minFrontage = 0.5;
   /// Constraint 3: aspect-ratio threshold (spec §5.4: 0.25), unitless.

@@ -270,3 +270,28 @@ TEST(Pipeline, QualityOnRandomCityForBothSpineMethods) {
     EXPECT_GT(spines, 5);
   }
 }
+
+TEST(Pipeline, BlockSmallerThanItsSimulatedParcelsScalesTheMinimumSize) {
+  // Four simulated parcels of 12 cells must fit a 6 x 4 block: 6 cells each, below 75% of 12.
+  geos::Context geos;
+  ParcelBlock block = fixtures::stripBlock(12, 4, std::vector<LandUse>(4, LandUse::Residential));
+  block.polygon.outer = fixtures::rectangleRing(6, 4);
+  block.roadFacing = {block.polygon.outer};
+  ParcelsOptions options;
+  options.relaxationRounds = 0;
+  const BlockParcels scaled = parcelBlock(block, options, geos);
+  EXPECT_EQ(scaled.report.parcels, 4) << scaled.report.shortfall;
+  EXPECT_EQ(scaled.report.relaxedRules, 0);
+  // The documents' threshold alone cannot: the report says why.
+  options.regular.scaleMinAreaToBlock = false;
+  const BlockParcels strict = parcelBlock(block, options, geos);
+  EXPECT_LT(strict.report.parcels, 4);
+  EXPECT_NE(strict.report.shortfall.find("minimum parcel size"), std::string::npos)
+      << strict.report.shortfall;
+  // A relaxation round halves the threshold and reaches the count, and says so.
+  options.relaxationRounds = 2;
+  const BlockParcels relaxed = parcelBlock(block, options, geos);
+  EXPECT_EQ(relaxed.report.parcels, 4) << relaxed.report.shortfall;
+  EXPECT_EQ(relaxed.report.relaxedRules, 1);
+  EXPECT_TRUE(relaxed.report.shortfall.empty());
+}
