@@ -28,41 +28,46 @@ app::CommandSpec spec() {
   s.name = "vectorize";
   s.summary = "Turns gridded urban land use into a vector city: roads, pavement, blocks, spines, parcels.";
   s.description =
-      "Implements Sexton's vectorizer: simulated blocks by flood fill, extraneous intersection "
-      "patch cleaning, a road graph on 1-wide secondary and 2-wide primary road cells, external block perimeters, "
-      "intersection straightening, smoothing, primary/secondary connection, short-cycle removal, intersection "
-      "simplification and curve smoothing; then curbs, pavement and culs-de-sac, blocks (internal, external, water "
-      "split, matched to the simulated blocks), spines, parcels by spine and regular subdivision with land use "
-      "and population (best of -tries per block, blocks in parallel). Writes the layers roads (one LineString per "
-      "segment between intersections, dead ends or class changes; perimeters as road_class=perimeter), road_nodes, "
-      "pavement, blocks, water, spines, parcels and the table vectorize_report, in the CRS "
-      "of the land-use raster. All rasters given together must share size, geotransform and CRS. Distances are "
-      "in cells (patch widths). See docs/vectorize.md.";
+      "Implements Sexton's vectorizer: simulated blocks by flood fill, extraneous intersection patch "
+      "cleaning, a road graph on 1-wide secondary and 2-wide primary road cells, external block perimeters, "
+      "intersection straightening, smoothing, primary/secondary connection, short-cycle removal, "
+      "intersection simplification and curve smoothing; then curbs, pavement and culs-de-sac, blocks "
+      "(internal, external, water split, matched to the simulated blocks), spines, parcels by spine and "
+      "regular subdivision with land use and population (best of -tries per block, blocks in parallel). "
+      "Writes the layers roads (one LineString per segment between intersections, dead ends or class "
+      "changes; perimeters as road_class=perimeter), road_nodes, pavement, blocks, water, spines, parcels "
+      "and the table vectorize_report, in the CRS of the land-use raster. All rasters given together must "
+      "share size, geotransform and CRS. Distances are in cells (patch widths). See docs/vectorize.md.";
   s.group = "Vectorization";
-  s.positionals = {{"landuse", "Land-use raster: class codes 0..8 (255 nodata), or any values mapped with -classes.",
-                    Role::InputRaster},
-                   {"output", "Output vector dataset (GeoPackage by default).", Role::OutputVector}};
+  s.positionals = {
+      {"landuse", "Land-use raster: class codes 0..8 (255 nodata), or any values mapped with -classes.",
+       Role::InputRaster},
+      {"output", "Output vector dataset (GeoPackage by default).", Role::OutputVector}};
   auto& o = s.options;
   o.push_back(option("-density", ValueType::String, "<raster>", "Population per cell (Float32), same grid.")
                   .withRole(Role::InputRaster));
-  o.push_back(option("-parcels", ValueType::String, "<raster>", "Parcel id per cell (Int32, 0 = none), same grid.")
-                  .withRole(Role::InputRaster));
+  o.push_back(
+      option("-parcels", ValueType::String, "<raster>", "Parcel id per cell (Int32, 0 = none), same grid.")
+          .withRole(Role::InputRaster));
   o.push_back(option("-parcel-table", ValueType::String, "<csv>",
                      "Parcel list parcel_id,land_use,population,cells (needs -parcels).")
                   .withRole(Role::InputFile));
-  o.push_back(option("-classes", ValueType::String, "<csv>",
-                     "Table value,class_name mapping the land-use raster's values to the nine classes (nodata = "
-                     "unused), for rasters from other simulations or land-cover products.")
-                  .withRole(Role::InputFile));
+  o.push_back(
+      option("-classes", ValueType::String, "<csv>",
+             "Table value,class_name mapping the land-use raster's values to the nine classes (nodata = "
+             "unused), for rasters from other simulations or land-cover products.")
+          .withRole(Role::InputFile));
   o.push_back(app::seedOption());
   o.push_back(option("-tries", ValueType::Integer, "<n>",
                      "Generate-and-test iterations per block; the lowest-cost parcelling is kept (E5).")
                   .byDefault(std::to_string(vectorize::parcels::ParcelsOptions{}.tries))
                   .atLeast(1));
-  o.push_back(option("-spine-method", ValueType::Choice, "<method>",
-                     "How block spines are found (D6): the thesis's Zhang-Suen thinning or CGAL's straight skeleton.")
-                  .oneOf({"zhang-suen", "skeleton"})
-                  .byDefault(std::string(vectorize::parcels::spineMethodName(vectorize::parcels::SpineOptions{}.method))));
+  o.push_back(
+      option("-spine-method", ValueType::Choice, "<method>",
+             "How block spines are found (D6): the thesis's Zhang-Suen thinning or CGAL's straight skeleton.")
+          .oneOf({"zhang-suen", "skeleton"})
+          .byDefault(
+              std::string(vectorize::parcels::spineMethodName(vectorize::parcels::SpineOptions{}.method))));
   o.push_back(option("-threads", ValueType::Integer, "<n>",
                      "Worker threads for the block stages (0 = all cores); the output does not depend on it.")
                   .byDefault("0")
@@ -71,26 +76,33 @@ app::CommandSpec spec() {
   o.push_back(option("-roads-only", ValueType::Flag, "",
                      "Stop after the road network (stages A-B): write only roads and road_nodes."));
   for (const app::OptionSpec& v : app::vectorOutputOptions()) o.push_back(v);
-  o.push_back(option("-debug-stages", ValueType::String, "<dir>",
-                     "Write the road graph after each stage (links and nodes layers per stage) to <dir>/stages.gpkg.")
-                  .withRole(Role::OutputFolder)
-                  .isAdvanced());
-  o.push_back(option("-timings", ValueType::Flag, "", "Print time, peak memory and counts per stage.").isAdvanced());
-  o.push_back(option("-check", ValueType::Flag, "",
-                     "Check the road topology (crossings only at shared nodes, no zero-length pieces, no duplicate "
-                     "nodes) and print the result; a failed check is an error.")
-                  .isAdvanced());
-  o.push_back(option("-primary-node", ValueType::Choice, "<where>",
-                     "Primary node at the patch's south-east corner (paper) or the south-east neighbour's centre "
-                     "(thesis).")
-                  .oneOf({"corner", "neighbour"})
-                  .byDefault("corner")
-                  .isAdvanced());
-  o.push_back(option("-max-link", ValueType::Real, "<cells>", "Links this long or longer are subdivided (A4.6).")
-                  .byDefault(app::numberText(d.roadGraph.maxLinkLength))
-                  .withUnit("cells")
-                  .atLeast(0.1)
-                  .isAdvanced());
+  o.push_back(
+      option("-debug-stages", ValueType::String, "<dir>",
+             "Write the road graph after each stage (links and nodes layers per stage) to <dir>/stages.gpkg.")
+          .withRole(Role::OutputFolder)
+          .isAdvanced());
+  o.push_back(
+      option("-timings", ValueType::Flag, "", "Print time, peak memory and counts per stage.").isAdvanced());
+  o.push_back(
+      option("-check", ValueType::Flag, "",
+             "Check the road topology (crossings only at shared nodes, no zero-length pieces, no duplicate "
+             "nodes) and that every road cell lies within 1.5 cells of an output road (except cells the "
+             "pipeline removes on purpose), and print the result; a failed topology check is an error, a "
+             "failed coverage check a warning.")
+          .isAdvanced());
+  o.push_back(
+      option("-primary-node", ValueType::Choice, "<where>",
+             "Primary node at the patch's south-east corner (paper) or the south-east neighbour's centre "
+             "(thesis).")
+          .oneOf({"corner", "neighbour"})
+          .byDefault("corner")
+          .isAdvanced());
+  o.push_back(
+      option("-max-link", ValueType::Real, "<cells>", "Links this long or longer are subdivided (A4.6).")
+          .byDefault(app::numberText(d.roadGraph.maxLinkLength))
+          .withUnit("cells")
+          .atLeast(0.1)
+          .isAdvanced());
   o.push_back(option("-straighten-window", ValueType::Real, "<cells>",
                      "Intersection straightening fits nodes within this distance (B1).")
                   .byDefault(app::numberText(d.straightening.window))
@@ -107,10 +119,11 @@ app::CommandSpec spec() {
                   .byDefault(app::numberText(d.roadSmoothing.passes))
                   .atLeast(0)
                   .isAdvanced());
-  o.push_back(option("-perimeter-passes", ValueType::Integer, "<n>", "Smoothing passes of perimeter lines (B2, Q8).")
-                  .byDefault(app::numberText(d.roadSmoothing.perimeterPasses))
-                  .atLeast(0)
-                  .isAdvanced());
+  o.push_back(
+      option("-perimeter-passes", ValueType::Integer, "<n>", "Smoothing passes of perimeter lines (B2, Q8).")
+          .byDefault(app::numberText(d.roadSmoothing.perimeterPasses))
+          .atLeast(0)
+          .isAdvanced());
   o.push_back(option("-straight-angle", ValueType::Real, "<degrees>",
                      "Road pairs straighter than this re-straighten their intersection (B2).")
                   .byDefault(app::numberText(d.roadSmoothing.straightAngle))
@@ -118,7 +131,8 @@ app::CommandSpec spec() {
                   .atLeast(90)
                   .atMost(180)
                   .isAdvanced());
-  o.push_back(option("-cycle-nodes", ValueType::Integer, "<n>", "Road cycles of at most this many nodes lose a segment (B4).")
+  o.push_back(option("-cycle-nodes", ValueType::Integer, "<n>",
+                     "Road cycles of at most this many nodes lose a segment (B4).")
                   .byDefault(app::numberText(d.cycles.maxCycleNodes))
                   .atLeast(0)
                   .isAdvanced());
@@ -148,22 +162,27 @@ app::CommandSpec spec() {
   o.push_back(option("-curve-angles", ValueType::Real, "<a3> <a2> <a1>",
                      "Bends sharper than these interior angles get 3, 2, 1 extra nodes per side (B6).")
                   .values(3)
-                  .byDefault(app::numberText(d.curves.angleThreeNodes) + " " + app::numberText(d.curves.angleTwoNodes) + " " +
+                  .byDefault(app::numberText(d.curves.angleThreeNodes) + " " +
+                             app::numberText(d.curves.angleTwoNodes) + " " +
                              app::numberText(d.curves.angleOneNode))
                   .withUnit("degrees")
                   .atLeast(0)
                   .atMost(180)
                   .isAdvanced());
-  o.push_back(option("-simplify", ValueType::Real, "<cells>",
-                     "Tolerance of the topology-preserving simplification of the output segments (0 = keep every "
-                     "graph node).")
-                  .byDefault(app::numberText(d.outputSimplification))
-                  .withUnit("cells")
-                  .atLeast(0)
-                  .isAdvanced());
-  s.examples = {"urbanvec vectorize -density density.tif -parcels parcels.tif -parcel-table parcels.csv landuse.tif city.gpkg",
-                "urbanvec vectorize -classes corine_classes.csv -debug-stages stages landcover.tif roads.gpkg"};
-  s.outputLayers = {"roads", "road_nodes", "pavement", "blocks", "water", "spines", "parcels", "vectorize_report"};
+  o.push_back(
+      option("-simplify", ValueType::Real, "<cells>",
+             "Tolerance of the topology-preserving simplification of the output segments (0 = keep every "
+             "graph node).")
+          .byDefault(app::numberText(d.outputSimplification))
+          .withUnit("cells")
+          .atLeast(0)
+          .isAdvanced());
+  s.examples = {
+      "urbanvec vectorize -density density.tif -parcels parcels.tif -parcel-table parcels.csv landuse.tif "
+      "city.gpkg",
+      "urbanvec vectorize -classes corine_classes.csv -debug-stages stages landcover.tif roads.gpkg"};
+  s.outputLayers = {"roads", "road_nodes", "pavement", "blocks",
+                    "water", "spines",     "parcels",  "vectorize_report"};
   return s;
 }
 
@@ -194,8 +213,8 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
       options.curves.angleOneNode = std::stod(a[2]);
       if (!(options.curves.angleThreeNodes <= options.curves.angleTwoNodes &&
             options.curves.angleTwoNodes <= options.curves.angleOneNode))
-        throw invalidOption("-curve-angles must be increasing (for 3, 2, 1 nodes), got " + a[0] + " " + a[1] + " " +
-                            a[2]);
+        throw invalidOption("-curve-angles must be increasing (for 3, 2, 1 nodes), got " + a[0] + " " + a[1] +
+                            " " + a[2]);
     }
   }
   options.outputSimplification = args.real("-simplify");
@@ -209,14 +228,30 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
 
   // Check the outputs up front, before any work.
   io::AtomicOutput out(output, overwrite);
+  // A -debug-stages folder this run creates goes again when the run fails (declared before debugOut,
+  // so the temporary file inside is gone first).
+  struct CreatedFolder {
+    std::filesystem::path top;  ///< the outermost folder this run created; empty when none
+    bool keep = false;
+    ~CreatedFolder() {
+      std::error_code ec;
+      if (!keep && !top.empty()) std::filesystem::remove_all(top, ec);
+    }
+  } createdFolder;
   std::unique_ptr<io::AtomicOutput> debugOut;
   if (debug) {
     const std::string dir = args.str("-debug-stages");
     std::error_code ec;
+    for (std::filesystem::path p = std::filesystem::absolute(dir, ec);
+         !p.empty() && !ec && !std::filesystem::exists(p, ec); p = p.parent_path()) {
+      createdFolder.top = p;
+      if (p == p.parent_path()) break;
+    }
     std::filesystem::create_directories(dir, ec);
     if (ec || !std::filesystem::is_directory(dir))
       throw invalidOption("-debug-stages: cannot create folder '" + dir + "'");
-    debugOut = std::make_unique<io::AtomicOutput>((std::filesystem::path(dir) / "stages.gpkg").string(), overwrite);
+    debugOut =
+        std::make_unique<io::AtomicOutput>((std::filesystem::path(dir) / "stages.gpkg").string(), overwrite);
   }
 
   io::GridInputPaths paths;
@@ -234,8 +269,16 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
 
   if (args.flag("-check")) {
     const vectorize::RoadNetworkCheck check = vectorize::checkRoadNetwork(result.layers[0], result.layers[1]);
-    if (ctx.out) *ctx.out << "topology: " << check.describe() << "\n";
+    const vectorize::RoadCoverageCheck coverage =
+        vectorize::checkRoadCoverage(input.landUse, result.cells, result.network, result.cycleRemovedLinks);
+    if (ctx.out) *ctx.out << "topology: " << check.describe() << "\n" << coverage.describe() << "\n";
     if (!check.ok()) throw internalError("the road topology check failed: " + check.describe());
+    // Coverage is a quality figure, not part of the output contract: a shortfall is reported, and the
+    // output is still written.
+    if (!coverage.ok())
+      ctx.warn("the road coverage check failed: " + std::to_string(coverage.far) +
+               " road cells are farther than " + app::numberText(coverage.maxDistance) +
+               " cells from every output road");
   }
 
   io::VectorWriteOptions write;
@@ -262,6 +305,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
     debugOut->commit();
   }
   out.commit();
+  createdFolder.keep = true;
 
   if (args.flag("-timings") && ctx.out) {
     std::ostream& s = *ctx.out;

@@ -1,7 +1,11 @@
 #include "urbanvec/io/grid_input.hpp"
 
+#include <ogr_spatialref.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -31,7 +35,8 @@ std::vector<std::string> splitCsv(const std::string& line) {
 }
 
 std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return s;
 }
 
@@ -48,9 +53,77 @@ bool parseNumber(const std::string& text, double& value) {
   return end && *end == '\0' && std::isfinite(value);
 }
 
+/// A missing table, or a folder given as one, is named as such rather than "cannot be opened".
+void requireFile(const std::string& path, const std::string& role) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw invalidInput(role + " '" + path + "' does not exist");
+  if (std::filesystem::is_directory(path, ec))
+    throw invalidInput(role + " '" + path + "' is a folder, not a file");
+}
+
+/// "EPSG:32633" (or the CRS's name when it has no authority code), "no CRS" when empty.
+std::string crsLabel(const std::string& wkt) {
+  if (wkt.empty()) return "no CRS";
+  OGRSpatialReference srs;
+  if (srs.importFromWkt(wkt.c_str()) != OGRERR_NONE) return "an unreadable CRS";
+  srs.AutoIdentifyEPSG();
+  const char* name = srs.GetAuthorityName(nullptr);
+  const char* code = srs.GetAuthorityCode(nullptr);
+  if (name && code) return std::string(name) + ":" + code;
+  char* proj = nullptr;
+  std::string label;
+  if (srs.exportToProj4(&proj) == OGRERR_NONE && proj) label = "'" + trim(proj) + "'";
+  CPLFree(proj);
+  if (!label.empty()) return label;
+  const char* crsName = srs.GetName();
+  return crsName ? "'" + std::string(crsName) + "'" : "an unnamed CRS";
+}
+
+/// "(x, y)" with enough digits for map coordinates.
+std::string pair(double a, double b) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "(%.12g, %.12g)", a, b);
+  return buf;
+}
+
+/// Rasters given together must be one grid (CONVENTIONS.md "Gridded input"): the error names both
+/// rasters and the first thing that differs, with both values.
+void requireSameGridAs(const RasterInfo& base, const std::string& baseRole, const std::string& basePath,
+                       const RasterInfo& other, const std::string& otherRole, const std::string& otherPath) {
+  const GridSpec &a = base.spec, &b = other.spec;
+  const std::string names = otherRole + " '" + otherPath + "' and " + baseRole + " '" + basePath + "'";
+  const std::string hint = "; rasters given together must share size, geotransform and CRS";
+  if (a.width != b.width || a.height != b.height)
+    throw invalidInput(names + " differ in size: " + std::to_string(b.width) + "x" +
+                       std::to_string(b.height) + " vs " + std::to_string(a.width) + "x" +
+                       std::to_string(a.height) + " cells" + hint);
+  const auto& ga = a.transform.c;
+  const auto& gb = b.transform.c;
+  auto same = [&](int i) { return std::fabs(ga[i] - gb[i]) <= 1e-9 * std::max(1.0, std::fabs(ga[i])); };
+  if (!same(1) || !same(5))
+    throw invalidInput(names + " differ in geotransform pixel size: " + pair(gb[1], gb[5]) + " vs " +
+                       pair(ga[1], ga[5]) + hint);
+  if (!same(2) || !same(4))
+    throw invalidInput(names + " differ in geotransform rotation: " + pair(gb[2], gb[4]) + " vs " +
+                       pair(ga[2], ga[4]) + hint);
+  if (!same(0) || !same(3))
+    throw invalidInput(names + " differ in geotransform origin: " + pair(gb[0], gb[3]) + " vs " +
+                       pair(ga[0], ga[3]) + hint);
+  bool sameCrs = a.crsWkt.empty() == b.crsWkt.empty();
+  if (sameCrs && !a.crsWkt.empty()) {
+    OGRSpatialReference sa, sb;
+    sa.importFromWkt(a.crsWkt.c_str());
+    sb.importFromWkt(b.crsWkt.c_str());
+    sameCrs = sa.IsSame(&sb);
+  }
+  if (!sameCrs)
+    throw invalidInput(names + " differ in CRS: " + crsLabel(b.crsWkt) + " vs " + crsLabel(a.crsWkt) + hint);
+}
+
 }  // namespace
 
 std::vector<std::pair<double, LandUse>> readClassTable(const std::string& path) {
+  requireFile(path, "-classes table");
   std::ifstream f(path);
   if (!f) throw invalidInput("-classes table '" + path + "' cannot be opened");
   std::vector<std::pair<double, LandUse>> table;
@@ -69,8 +142,9 @@ std::vector<std::pair<double, LandUse>> readClassTable(const std::string& path) 
     }
     const std::optional<LandUse> use = parseLandUse(cols[1]);
     if (!use)
-      throw invalidInput("-classes table '" + path + "' line " + std::to_string(lineNo) + " names unknown class '" +
-                         cols[1] + "' (expected one of unused, water, secondary_road, primary_road, residential, "
+      throw invalidInput("-classes table '" + path + "' line " + std::to_string(lineNo) +
+                         " names unknown class '" + cols[1] +
+                         "' (expected one of unused, water, secondary_road, primary_road, residential, "
                          "commercial, industrial, park, reserved)");
     table.emplace_back(value, *use);
   }
@@ -92,7 +166,8 @@ vectorize::VectorizeInput loadGridInput(const GridInputPaths& paths, std::vector
     for (const auto& [v, u] : readClassTable(paths.classes)) classes[v] = u;
   for (size_t i = 0; i < raw.cells.size(); ++i) {
     const double v = raw.cells[i];
-    if (info.nodata && (v == *info.nodata || (std::isnan(v) && std::isnan(*info.nodata)))) continue;  // unused
+    if (info.nodata && (v == *info.nodata || (std::isnan(v) && std::isnan(*info.nodata))))
+      continue;  // unused
     auto where = [&]() {
       return " at column " + std::to_string(i % raw.width) + ", row " + std::to_string(i / raw.width);
     };
@@ -100,14 +175,15 @@ vectorize::VectorizeInput loadGridInput(const GridInputPaths& paths, std::vector
       auto it = classes.find(v);
       if (it == classes.end())
         throw invalidInput(luRole + " '" + paths.landUse + "' holds value " + numberText(v) + where() +
-                           " which -classes table '" + paths.classes + "' does not map (add a line '" +
+                           ", which -classes table '" + paths.classes + "' does not map (add a line '" +
                            numberText(v) + ",<class name>')");
       in.landUse.cells[i] = static_cast<std::uint8_t>(it->second);
       continue;
     }
     if (std::isnan(v) || v != std::floor(v) || v < 0 || (v > 8 && v != kLandUseNodata))
-      throw invalidInput(luRole + " '" + paths.landUse + "' (" + info.dataType + ") holds value " + numberText(v) +
-                         where() + ", which is not a land-use class code (0..8, 255 = nodata); map its values to "
+      throw invalidInput(luRole + " '" + paths.landUse + "' (" + info.dataType + ") holds value " +
+                         numberText(v) + where() +
+                         ", which is not a land-use class code (0..8, 255 = nodata); map its values to "
                          "classes with -classes <csv>");
     in.landUse.cells[i] = static_cast<std::uint8_t>(landUseFromCode(static_cast<int>(v)));
   }
@@ -115,17 +191,18 @@ vectorize::VectorizeInput loadGridInput(const GridInputPaths& paths, std::vector
   if (!paths.density.empty()) {
     RasterInfo di;
     in.density = readRasterBand<float>(paths.density, "density raster", &di);
-    requireSameGrid(info.spec, paths.landUse, di.spec, paths.density);
+    requireSameGridAs(info, luRole, paths.landUse, di, "density raster", paths.density);
     for (float& d : in.density.cells)
       if ((di.nodata && d == static_cast<float>(*di.nodata)) || !std::isfinite(d)) d = 0;
   }
   if (!paths.parcelTable.empty() && paths.parcels.empty())
-    throw invalidInput("-parcel-table '" + paths.parcelTable + "' needs the parcel raster (-parcels) that holds "
+    throw invalidInput("-parcel-table '" + paths.parcelTable +
+                       "' needs the parcel raster (-parcels) that holds "
                        "the parcels' cells");
   if (!paths.parcels.empty()) {
     RasterInfo pi;
     const Grid<double> ids = readRasterBand<double>(paths.parcels, "parcels raster", &pi);
-    requireSameGrid(info.spec, paths.landUse, pi.spec, paths.parcels);
+    requireSameGridAs(info, luRole, paths.landUse, pi, "parcels raster", paths.parcels);
     in.parcelIds = Grid<std::int32_t>(ids.width, ids.height, 0);
     for (size_t i = 0; i < ids.cells.size(); ++i) {
       const double v = ids.cells[i];
@@ -136,12 +213,13 @@ vectorize::VectorizeInput loadGridInput(const GridInputPaths& paths, std::vector
         throw invalidInput("parcels raster '" + paths.parcels + "' holds value " + numberText(v) + where +
                            ", which is not an integer parcel id");
       if (v < 0)
-        throw invalidInput("parcels raster '" + paths.parcels + "' holds negative parcel id " + numberText(v) + where +
-                           " (ids must be >= 0, 0 = no parcel)");
+        throw invalidInput("parcels raster '" + paths.parcels + "' holds negative parcel id " +
+                           numberText(v) + where + " (ids must be >= 0, 0 = no parcel)");
       in.parcelIds.cells[i] = static_cast<std::int32_t>(v);
     }
   }
   if (!paths.parcelTable.empty()) {
+    requireFile(paths.parcelTable, "parcel table");
     std::ifstream f(paths.parcelTable);
     if (!f) throw invalidInput("parcel table '" + paths.parcelTable + "' cannot be opened");
     std::string line;
@@ -176,8 +254,8 @@ vectorize::VectorizeInput loadGridInput(const GridInputPaths& paths, std::vector
       if (!use) throw invalidInput(at + ": land_use '" + cols[cUse] + "' is not a class name");
       const auto pid = static_cast<std::int32_t>(id);
       if (!inRaster.count(pid))
-        throw invalidInput(at + " names parcel id " + std::to_string(pid) + ", which is not in the parcels raster '" +
-                           paths.parcels + "'");
+        throw invalidInput(at + " names parcel id " + std::to_string(pid) +
+                           ", which is not in the parcels raster '" + paths.parcels + "'");
       if (!seen.insert(pid).second) throw invalidInput(at + " repeats parcel id " + std::to_string(pid));
       in.parcelTable.push_back({pid, *use, pop, static_cast<std::int64_t>(cells)});
     }

@@ -20,7 +20,8 @@ struct GridInputPaths {
 
 /// Reads and checks everything; throws urbanvec::Error naming the file and what is wrong. Non-fatal
 /// findings are appended to `warnings`.
-vectorize::VectorizeInput loadGridInput(const GridInputPaths& paths, std::vector<std::string>* warnings = nullptr);
+vectorize::VectorizeInput loadGridInput(const GridInputPaths& paths,
+                                        std::vector<std::string>* warnings = nullptr);
 
 /// Parses a `value,class_name` table (header optional, '#' comments allowed) into value -> class.
 std::vector<std::pair<double, LandUse>> readClassTable(const std::string& path);

@@ -1,7 +1,10 @@
 #include "urbanvec/vectorize/city_pipeline.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <optional>
+#include <utility>
 
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/core/geos.hpp"
@@ -41,48 +44,161 @@ struct Frame {
   }
 };
 
-/// The parts of each block's outline that run along pavement: the road frontage E2 measures.
-/// A local union of the pavement pieces near the block (STRtree) keeps this linear in city size.
-std::vector<MultiLineString> roadFacingEdges(const BlocksResult& blocks, const Frame& frame, double tolerance) {
+/// An axis-aligned box, compared as GEOS compares envelopes (closed intervals).
+struct Box {
+  double minX = 1e300, minY = 1e300, maxX = -1e300, maxY = -1e300;
+  explicit Box(const Ring& ring) {
+    for (const Vec2& p : ring) {
+      minX = std::min(minX, p.x);
+      minY = std::min(minY, p.y);
+      maxX = std::max(maxX, p.x);
+      maxY = std::max(maxY, p.y);
+    }
+  }
+  Box(double x0, double y0, double x1, double y1) : minX(x0), minY(y0), maxX(x1), maxY(y1) {}
+  Box grown(double d) const { return {minX - d, minY - d, maxX + d, maxY + d}; }
+  bool intersects(const Box& o) const {
+    return !(o.minX > maxX || o.maxX < minX || o.minY > maxY || o.maxY < minY);
+  }
+};
+
+/// Boxes bucketed on a uniform grid: the pieces whose box meets a query box, in index order.
+class BoxIndex {
+ public:
+  explicit BoxIndex(const std::vector<Box>& boxes) : boxes_(boxes), extent_(0, 0, 0, 0) {
+    if (boxes.empty()) return;
+    extent_ = boxes.front();
+    for (const Box& b : boxes)
+      extent_ = {std::min(extent_.minX, b.minX), std::min(extent_.minY, b.minY),
+                 std::max(extent_.maxX, b.maxX), std::max(extent_.maxY, b.maxY)};
+    const double w = extent_.maxX - extent_.minX, h = extent_.maxY - extent_.minY;
+    // About one box per bucket on average, and never many more buckets than boxes.
+    const double count = static_cast<double>(boxes.size());
+    cell_ = std::max(std::sqrt(w * h / count), 1e-9);
+    while ((w / cell_ + 1.0) * (h / cell_ + 1.0) > 4.0 * count + 16.0) cell_ *= 1.5;
+    nx_ = static_cast<int>(w / cell_) + 1;
+    ny_ = static_cast<int>(h / cell_) + 1;
+    buckets_.resize(static_cast<size_t>(nx_) * static_cast<size_t>(ny_));
+    for (size_t i = 0; i < boxes.size(); ++i) {
+      const auto [x0, y0, x1, y1] = range(boxes[i]);
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x)
+          buckets_[static_cast<size_t>(y) * nx_ + x].push_back(static_cast<int>(i));
+    }
+  }
+  /// Indices of the boxes meeting `q`, increasing; `seen` is scratch space of the caller's thread.
+  void query(const Box& q, std::vector<int>& out, std::vector<int>& seen, int stamp) const {
+    out.clear();
+    if (boxes_.empty() || !q.intersects(extent_)) return;
+    seen.resize(boxes_.size(), -1);
+    const auto [x0, y0, x1, y1] = range(q);
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x)
+        for (int i : buckets_[static_cast<size_t>(y) * nx_ + x])
+          if (seen[i] != stamp && boxes_[i].intersects(q)) {
+            seen[i] = stamp;
+            out.push_back(i);
+          }
+    std::sort(out.begin(), out.end());
+  }
+
+ private:
+  std::array<int, 4> range(const Box& b) const {
+    auto clampX = [&](double v) {
+      return std::clamp(static_cast<int>(std::floor((v - extent_.minX) / cell_)), 0, nx_ - 1);
+    };
+    auto clampY = [&](double v) {
+      return std::clamp(static_cast<int>(std::floor((v - extent_.minY) / cell_)), 0, ny_ - 1);
+    };
+    return {clampX(b.minX), clampY(b.minY), clampX(b.maxX), clampY(b.maxY)};
+  }
+  const std::vector<Box>& boxes_;
+  Box extent_;
+  double cell_ = 1.0;
+  int nx_ = 0, ny_ = 0;
+  std::vector<std::vector<int>> buckets_;
+};
+
+/// The parts of each block's outline that run along pavement: the road frontage E2 measures. Per
+/// block, the pavement pieces near it (envelope within the envelope of the block buffered by ten
+/// tolerances, and the piece itself within ten tolerances of the block) are buffered together by the
+/// tolerance and cut with the outline. Blocks are independent, so they run on `threads` workers; a
+/// bucket index finds the candidate pieces, and the block's buffer is only computed for the rare
+/// piece whose box ends in the margin where that envelope and the block's bounding box grown by ten
+/// tolerances may disagree.
+std::vector<MultiLineString> roadFacingEdges(const BlocksResult& blocks, const Frame& frame, double tolerance,
+                                             int threads) {
   geos::Context ctx;
-  GEOSContextHandle_t h = ctx.handle();
   std::vector<geos::GeomPtr> pavement;
-  GEOSSTRtree* tree = GEOSSTRtree_create_r(h, 10);
+  std::vector<Box> boxes;
   for (const Feature& f : blocks.pavement.features) {
     MultiPolygon parts;
     if (const auto* p = std::get_if<Polygon>(&f.geometry)) parts.push_back(*p);
     if (const auto* mp = std::get_if<MultiPolygon>(&f.geometry)) parts = *mp;
     for (const Polygon& p : parts) {
-      pavement.push_back(ctx.polygon(frame.toCells(p)));
-      GEOSSTRtree_insert_r(h, tree, pavement.back().get(), pavement.back().get());
+      const Polygon cells = frame.toCells(p);
+      boxes.emplace_back(cells.outer);
+      pavement.push_back(ctx.polygon(cells));
     }
   }
-  std::vector<MultiLineString> out;
-  for (const BlockInfo& info : blocks.blockInfo) {
-    geos::GeomPtr block = ctx.polygon(info.shape);
-    geos::GeomPtr envelope = ctx.own(GEOSBuffer_r(h, block.get(), tolerance * 10, 1), "block envelope");
-    std::vector<GEOSGeometry*> near;
-    GEOSSTRtree_query_r(
-        h, tree, envelope.get(),
-        [](void* item, void* userdata) {
-          static_cast<std::vector<GEOSGeometry*>*>(userdata)->push_back(static_cast<GEOSGeometry*>(item));
-        },
-        &near);
-    if (near.empty()) {
-      out.emplace_back();
-      continue;
+  const BoxIndex index(boxes);
+  const size_t n = blocks.blockInfo.size();
+  std::vector<MultiLineString> out(n);
+  const GeosWorkers workers(threads);
+  std::vector<std::vector<int>> seen(workers.size());
+  std::vector<std::vector<int>> candidates(workers.size());
+  std::vector<std::vector<int>> nears(workers.size());
+  workers.run(n, [&](size_t i, size_t w, const geos::Context& c) {
+    GEOSContextHandle_t h = c.handle();
+    const BlockInfo& info = blocks.blockInfo[i];
+    const Box bounds(info.shape.outer);
+    // GEOS's buffer with one segment per quadrant keeps within 10·tol of the block and reaches at
+    // least cos(45°)·10·tol beyond every extreme vertex; 5 and 11 tolerances leave room for rounding.
+    const Box sure = bounds.grown(5.0 * tolerance);
+    index.query(bounds.grown(11.0 * tolerance), candidates[w], seen[w], static_cast<int>(i));
+    geos::GeomPtr block = c.polygon(info.shape);
+    std::optional<Box> envelope;
+    std::vector<int>& near = nears[w];
+    near.clear();
+    for (int k : candidates[w]) {
+      if (!boxes[k].intersects(sure)) {
+        if (!envelope) {
+          geos::GeomPtr buffered = c.own(GEOSBuffer_r(h, block.get(), tolerance * 10, 1), "block envelope");
+          double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+          GEOSGeom_getXMin_r(h, buffered.get(), &x0);
+          GEOSGeom_getYMin_r(h, buffered.get(), &y0);
+          GEOSGeom_getXMax_r(h, buffered.get(), &x1);
+          GEOSGeom_getYMax_r(h, buffered.get(), &y1);
+          envelope = Box(x0, y0, x1, y1);
+        }
+        if (!boxes[k].intersects(*envelope)) continue;
+      }
+      near.push_back(k);
     }
-    std::sort(near.begin(), near.end());  // deterministic union input whatever the tree's order
+    // Only pieces within ten tolerances of the block can reach its outline with a band one tolerance
+    // wide; the rest only made the band's buffer costlier.
+    if (!near.empty()) {
+      const GEOSPreparedGeometry* prepared = GEOSPrepare_r(h, block.get());
+      if (!prepared) throw internalError("GEOS failed to prepare a block: " + c.lastError());
+      size_t kept = 0;
+      for (int k : near)
+        if (GEOSPreparedDistanceWithin_r(h, prepared, pavement[static_cast<size_t>(k)].get(),
+                                         10.0 * tolerance) == 1)
+          near[kept++] = k;
+      near.resize(kept);
+      GEOSPreparedGeom_destroy_r(h, prepared);
+    }
+    if (near.empty()) return;
     std::vector<geos::GeomPtr> parts;
-    for (GEOSGeometry* g : near) parts.push_back(ctx.own(GEOSGeom_clone_r(h, g), "clone"));
-    geos::GeomPtr local = ctx.collection(GEOS_GEOMETRYCOLLECTION, std::move(parts));
-    geos::GeomPtr band = ctx.own(GEOSBuffer_r(h, local.get(), tolerance, 2), "pavement band");
-    geos::GeomPtr outline = ctx.own(GEOSBoundary_r(h, block.get()), "block outline");
-    geos::GeomPtr facing = ctx.own(GEOSIntersection_r(h, outline.get(), band.get()), "road-facing edges");
-    geos::GeomPtr merged = ctx.own(GEOSLineMerge_r(h, facing.get()), "road-facing merge");
-    out.push_back(ctx.toLines(merged.get()));
-  }
-  GEOSSTRtree_destroy_r(h, tree);
+    for (int k : near)
+      parts.push_back(c.own(GEOSGeom_clone_r(h, pavement[static_cast<size_t>(k)].get()), "clone"));
+    geos::GeomPtr local = c.collection(GEOS_GEOMETRYCOLLECTION, std::move(parts));
+    geos::GeomPtr band = c.own(GEOSBuffer_r(h, local.get(), tolerance, 2), "pavement band");
+    geos::GeomPtr outline = c.own(GEOSBoundary_r(h, block.get()), "block outline");
+    geos::GeomPtr facing = c.own(GEOSIntersection_r(h, outline.get(), band.get()), "road-facing edges");
+    geos::GeomPtr merged = c.own(GEOSLineMerge_r(h, facing.get()), "road-facing merge");
+    out[i] = c.toLines(merged.get());
+  });
   return out;
 }
 
@@ -119,11 +235,13 @@ CityResult vectorizeCity(const RoadNetwork& network, const Grid<std::uint8_t>& c
   CityResult result;
   const Frame frame{grid};
   const SimulatedCity city = simulatedCity(cells, blocks, simParcels);
-  result.blocks = vectorizeBlocks(network, city, grid, options.blocks, subProgress(progress, 0.0, 0.35));
+  BlocksOptions blocksOptions = options.blocks;
+  blocksOptions.road.threads = options.parcels.threads;  // one thread setting for every parallel stage
+  result.blocks = vectorizeBlocks(network, city, grid, blocksOptions, subProgress(progress, 0.0, 0.35));
 
   reportProgress(progress, 0.35, "road frontage");
   const std::vector<MultiLineString> facing =
-      roadFacingEdges(result.blocks, frame, options.roadFacingTolerance);
+      roadFacingEdges(result.blocks, frame, options.roadFacingTolerance, options.parcels.threads);
   for (size_t i = 0; i < result.blocks.blockInfo.size(); ++i) {
     const BlockInfo& info = result.blocks.blockInfo[i];
     parcels::ParcelBlock block;
@@ -137,7 +255,8 @@ CityResult vectorizeCity(const RoadNetwork& network, const Grid<std::uint8_t>& c
     block.sim = summarizeSimulatedBlocks(info.simBlockIndices, blocks, simParcels);
     result.parcelBlocks.push_back(std::move(block));
   }
-  result.parcels = parcels::vectorizeParcels(result.parcelBlocks, options.parcels, subProgress(progress, 0.4, 0.97));
+  result.parcels =
+      parcels::vectorizeParcels(result.parcelBlocks, options.parcels, subProgress(progress, 0.4, 0.97));
 
   reportProgress(progress, 0.97, "city layers");
   const double cellArea = grid.transform.cellSize() * grid.transform.cellSize();
@@ -161,6 +280,7 @@ CityResult vectorizeCity(const RoadNetwork& network, const Grid<std::uint8_t>& c
                             {"cost_distance", FieldType::Real},
                             {"cost_size", FieldType::Real},
                             {"shortfall", FieldType::String},
+                            {"relaxed_rules", FieldType::Integer},
                             {"sim_population", FieldType::Real},
                             {"ignored_population", FieldType::Real},
                             {"ignored_uses", FieldType::Integer}});
@@ -186,13 +306,20 @@ CityResult vectorizeCity(const RoadNetwork& network, const Grid<std::uint8_t>& c
                                        areaM2 > 0.0 ? parcel.population / areaM2 : 0.0, areaM2}});
     }
     const parcels::BlockReport& r = out.report;
-    report.features.push_back({std::monostate{},
-                               {blockId, std::int64_t{r.simParcels}, std::int64_t{r.targetParcels},
-                                std::int64_t{r.parcels}, std::int64_t{r.tries}, r.cost, r.costUse, r.costDistance,
-                                r.costSize, r.shortfall, r.simPopulation, r.ignoredPopulation,
-                                std::int64_t{r.ignoredUses}}});
+    report.features.push_back(
+        {std::monostate{},
+         {blockId, std::int64_t{r.simParcels}, std::int64_t{r.targetParcels}, std::int64_t{r.parcels},
+          std::int64_t{r.tries}, r.cost, r.costUse, r.costDistance, r.costSize, r.shortfall,
+          std::int64_t{r.relaxedRules}, r.simPopulation, r.ignoredPopulation, std::int64_t{r.ignoredUses}}});
   }
-  result.layers = {result.blocks.pavement, result.blocks.blocks, result.blocks.water, spines, parcelLayer, report};
+  // Moved, not copied (an initializer list copies): at city scale each layer is tens of MB.
+  result.layers.reserve(6);
+  result.layers.push_back(std::move(result.blocks.pavement));
+  result.layers.push_back(result.blocks.blocks);  // blocks.blocks stays: callers count its features
+  result.layers.push_back(std::move(result.blocks.water));
+  result.layers.push_back(std::move(spines));
+  result.layers.push_back(std::move(parcelLayer));
+  result.layers.push_back(std::move(report));
   reportProgress(progress, 1.0, "city layers");
   return result;
 }

@@ -17,7 +17,7 @@
 namespace urbanvec::vectorize {
 
 struct CityOptions {
-  BlocksOptions blocks;            ///< stages C, D1-D5
+  BlocksOptions blocks;             ///< stages C, D1-D5
   parcels::ParcelsOptions parcels;  ///< stages D6, E1-E6
   /// Width of the band around the pavement within which a block edge counts as road-facing (E2
   /// constraint 2), in cells. [INFERENCE] Only absorbs floating-point noise between the block outline
@@ -26,6 +26,7 @@ struct CityOptions {
 };
 
 struct CityResult {
+  /// Stages C-D5; its `pavement` and `water` layers are moved into `layers` (left empty here).
   BlocksResult blocks;
   std::vector<parcels::ParcelBlock> parcelBlocks;  ///< the part 3 input, aligned with blocks.blockInfo
   parcels::ParcelsResult parcels;

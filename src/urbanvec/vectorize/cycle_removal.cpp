@@ -1,12 +1,15 @@
-// Stage B4 (spec §3 B4) with the [INFERENCE] face-based cycle definition of Q10 (unrestricted mode).
+// Stage B4 (spec §3 B4) with the [INFERENCE] face-based cycle definition of Q10, and its "undeveloped
+// only" flag on when a land-use grid is given (faces enclosing developed land keep their roads).
 // [INFERENCE] A qualifying face whose cycle has fewer than two chain ends (an isolated ring or a loop
 // hanging from one node) has no "segment between intersections"; its longest link is removed, which
 // opens the cycle without dropping road.
 #include "urbanvec/vectorize/cycle_removal.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <unordered_map>
 
+#include "urbanvec/core/landuse.hpp"
 #include "urbanvec/vectorize/road_checks.hpp"
 
 namespace urbanvec::vectorize {
@@ -35,6 +38,38 @@ RoadAdjacency roadAdjacency(const RoadGraph& g) {
 }
 
 /// Walks all faces; returns, per bounded face, its cycle as a node sequence.
+/// True when a cell centre inside the face (internal frame: x = col + 0.5, y = H - row - 0.5) holds
+/// developed land.
+bool enclosesDevelopedLand(const RoadGraph& g, const std::vector<int>& face,
+                           const Grid<std::uint8_t>& landUse) {
+  Ring ring;
+  ring.reserve(face.size() + 1);
+  for (int n : face) ring.push_back(g.nodes[n].p);
+  ring.push_back(ring.front());
+  double minX = 1e300, minY = 1e300, maxX = -1e300, maxY = -1e300;
+  for (const Vec2& p : ring) {
+    minX = std::min(minX, p.x), maxX = std::max(maxX, p.x);
+    minY = std::min(minY, p.y), maxY = std::max(maxY, p.y);
+  }
+  const int h = landUse.height;
+  for (int col = static_cast<int>(std::floor(minX)); col <= static_cast<int>(std::ceil(maxX)); ++col)
+    for (int row = h - static_cast<int>(std::ceil(maxY)) - 1; row <= h - static_cast<int>(std::floor(minY));
+         ++row) {
+      if (!landUse.inside(col, row) || !isDeveloped(static_cast<LandUse>(landUse.at(col, row)))) continue;
+      const Vec2 centre(col + 0.5, h - row - 0.5);
+      // Even-odd ray cast.
+      bool inside = false;
+      for (size_t k = 0; k + 1 < ring.size(); ++k) {
+        const Vec2 &a = ring[k], &b = ring[k + 1];
+        if ((a.y > centre.y) != (b.y > centre.y) &&
+            centre.x < a.x + (centre.y - a.y) * (b.x - a.x) / (b.y - a.y))
+          inside = !inside;
+      }
+      if (inside) return true;
+    }
+  return false;
+}
+
 std::vector<std::vector<int>> walkFaces(const RoadGraph& g, const RoadAdjacency& a, double maxFaceArea) {
   const size_t halfEdges = a.to.size();
   std::vector<std::int32_t> from(halfEdges);
@@ -107,7 +142,12 @@ CycleRemovalStats removeShortCycles(RoadGraph& graph, const CycleRemovalOptions&
       std::vector<int> nodes = faces[f];
       std::sort(nodes.begin(), nodes.end());
       const int distinct = static_cast<int>(std::unique(nodes.begin(), nodes.end()) - nodes.begin());
-      if (distinct <= options.maxCycleNodes) order.emplace_back(distinct, static_cast<int>(f));
+      if (distinct > options.maxCycleNodes) continue;
+      if (options.landUse && enclosesDevelopedLand(graph, faces[f], *options.landUse)) {
+        if (round == 0) ++stats.developedFacesKept;
+        continue;
+      }
+      order.emplace_back(distinct, static_cast<int>(f));
     }
     if (order.empty()) break;
     std::sort(order.begin(), order.end());
@@ -131,6 +171,8 @@ CycleRemovalStats removeShortCycles(RoadGraph& graph, const CycleRemovalOptions&
           if (distance(graph.nodes[cycle[k]].p, graph.nodes[cycle[(k + 1) % m]].p) >
               distance(graph.nodes[cycle[longest]].p, graph.nodes[cycle[(longest + 1) % m]].p))
             longest = k;
+        stats.removedLinks.push_back(
+            {graph.nodes[cycle[longest]].p, graph.nodes[cycle[(longest + 1) % m]].p});
         graph.unlink(cycle[longest], cycle[(longest + 1) % m]);
         ++removedThisRound;
         continue;
@@ -157,6 +199,9 @@ CycleRemovalStats removeShortCycles(RoadGraph& graph, const CycleRemovalOptions&
           bestLen = len;
         }
       }
+      for (size_t k = 0; k < bestLen; ++k)
+        stats.removedLinks.push_back(
+            {graph.nodes[cycle[(bestStart + k) % m]].p, graph.nodes[cycle[(bestStart + k + 1) % m]].p});
       if (bestLen == 1) {
         graph.unlink(cycle[bestStart], cycle[(bestStart + 1) % m]);
       } else {

@@ -2,6 +2,10 @@
 // 15 nodes enclose land too small to develop; one road segment of each is removed.
 #pragma once
 
+#include <array>
+#include <vector>
+
+#include "urbanvec/core/grid.hpp"
 #include "urbanvec/core/progress.hpp"
 #include "urbanvec/vectorize/road_graph.hpp"
 
@@ -18,12 +22,22 @@ struct CycleRemovalOptions {
   bool planarizeFirst = true;
   /// Safety cap on the repeat-until-none rounds (each round removes one segment per disjoint face).
   int maxRounds = 64;
+  /// Q10 flag: with a land-use grid (LandUse codes, internal frame of the graph), a face keeps its
+  /// roads when a cell centre it encloses is developed land (residential, commercial, industrial,
+  /// park). The documents motivate B4 by "undeveloped land which is awkward to develop"; removing a
+  /// road around a developed block merges it into its neighbour. Null = the documents' rule on every
+  /// short face.
+  const Grid<std::uint8_t>* landUse = nullptr;
 };
 
 struct CycleRemovalStats {
   std::size_t segmentsRemoved = 0;
   std::size_t rounds = 0;
-  std::size_t crossingsNoded = 0;  ///< by planarizeFirst
+  std::size_t crossingsNoded = 0;      ///< by planarizeFirst
+  std::size_t developedFacesKept = 0;  ///< short faces kept because they enclose developed land (Q10)
+  /// Every link removed, as it lay when removed (internal frame): what was dropped on purpose, for the
+  /// road-cell coverage check (road_checks.hpp).
+  std::vector<std::array<Vec2, 2>> removedLinks;
 };
 
 /// Faces come from the leftmost-turn walk over the clockwise-sorted road-only graph (perimeter links

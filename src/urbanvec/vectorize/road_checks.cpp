@@ -5,10 +5,12 @@
 #include <cstdio>
 #include <map>
 #include <set>
+#include <sstream>
 #include <unordered_map>
 #include <unordered_set>
 
 #include "urbanvec/vectorize/road_graph_build.hpp"
+#include "urbanvec/vectorize/vectorize_input.hpp"
 
 namespace urbanvec::vectorize {
 
@@ -103,9 +105,81 @@ bool nearInterior(const Vec2& p, const Vec2& a, const Vec2& b) {
   return std::fabs(cross(ab, p - a)) / std::sqrt(len2) <= eps;
 }
 
+/// Sets mask[cell] = 1 for every cell whose centre lies within r of segment ab (internal frame). Scans
+/// row by row only the columns the capsule around ab can reach, so the cost is about the capsule's
+/// area in cells.
+void markWithin(std::vector<std::uint8_t>& mask, int w, int h, const Vec2& a, const Vec2& b, double r) {
+  const double r2 = (r + 1e-9) * (r + 1e-9);  // a centre at r up to rounding counts as within
+  const Vec2 ab = b - a;
+  const double len2 = dot(ab, ab);
+  // Cell (c, row) has its centre at (c + 0.5, h - row - 0.5).
+  const double yLo = std::min(a.y, b.y) - r, yHi = std::max(a.y, b.y) + r;
+  const int rowFirst = std::max(0, static_cast<int>(std::ceil(h - 0.5 - yHi - 1e-9)));
+  const int rowLast = std::min(h - 1, static_cast<int>(std::floor(h - 0.5 - yLo + 1e-9)));
+  for (int row = rowFirst; row <= rowLast; ++row) {
+    const double yc = h - row - 0.5;
+    // The part of ab within r of this row's centre line, widened by r, bounds the columns.
+    double t0 = 0, t1 = 1;
+    if (ab.y != 0) {
+      t0 = (yc - r - a.y) / ab.y;
+      t1 = (yc + r - a.y) / ab.y;
+      if (t0 > t1) std::swap(t0, t1);
+      t0 = std::max(0.0, t0);
+      t1 = std::min(1.0, t1);
+      if (t0 > t1) continue;
+    }
+    const double x0 = a.x + ab.x * t0, x1 = a.x + ab.x * t1;
+    const int colFirst = std::max(0, static_cast<int>(std::ceil(std::min(x0, x1) - r - 0.5 - 1e-9)));
+    const int colLast = std::min(w - 1, static_cast<int>(std::floor(std::max(x0, x1) + r - 0.5 + 1e-9)));
+    for (int col = colFirst; col <= colLast; ++col) {
+      std::uint8_t& m = mask[static_cast<size_t>(row) * w + col];
+      if (m) continue;
+      const Vec2 p(col + 0.5, yc);
+      const double t = len2 > 0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+      const Vec2 d = p - (a + ab * t);
+      if (dot(d, d) <= r2) m = 1;
+    }
+  }
+}
+
 struct PointHash {
   size_t operator()(const Vec2& p) const { return std::hash<double>()(p.x) * 31 + std::hash<double>()(p.y); }
 };
+
+/// Calls forbidden(p, q) for every pair of pieces of `lines` (Piece::line indexes `lines`) that cross or
+/// touch anywhere but where the output contract allows: consecutive pieces of one line at their shared
+/// vertex, and pieces of two lines meeting at one shared end that is a node of both.
+template <class Forbidden>
+void forEachForbiddenContact(const std::vector<Piece>& pieces, const std::vector<const LineString*>& lines,
+                             const std::unordered_set<Vec2, PointHash>& nodeAt, Forbidden forbidden) {
+  forEachNearPair(pieces, [&](int i, int j) {
+    const Piece& p = pieces[i];
+    const Piece& q = pieces[j];
+    const int contact = segmentContact(p.a, p.b, q.a, q.b);
+    if (contact == 0) return;
+    if (contact == 2) {
+      const LineString& lp = *lines[p.line];
+      const LineString& lq = *lines[q.line];
+      const bool collinear = orient(p.a, p.b, q.a) == 0 && orient(p.a, p.b, q.b) == 0;
+      Vec2 shared;
+      int sharedCount = 0;
+      for (const Vec2& u : {p.a, p.b})
+        for (const Vec2& v : {q.a, q.b})
+          if (u == v) {
+            shared = u;
+            ++sharedCount;
+          }
+      if (sharedCount == 1 && !(collinear && (onSegment(p.a, p.b, q.a == shared ? q.b : q.a) ||
+                                              onSegment(q.a, q.b, p.a == shared ? p.b : p.a)))) {
+        if (p.line == q.line && std::abs(p.index - q.index) == 1) return;
+        const bool endOfP = shared == lp.front() || shared == lp.back();
+        const bool endOfQ = shared == lq.front() || shared == lq.back();
+        if (endOfP && endOfQ && nodeAt.count(shared)) return;
+      }
+    }
+    forbidden(p, q);
+  });
+}
 
 }  // namespace
 
@@ -121,6 +195,55 @@ std::string RoadNetworkCheck::describe() const {
   return std::to_string(segments) + " segments: " + std::to_string(crossings) + " crossings, " +
          std::to_string(zeroLengthPieces) + " zero-length pieces, " + std::to_string(duplicateNodes) +
          " duplicate nodes, " + std::to_string(loneEnds) + " segment ends without a node" + where;
+}
+
+std::string RoadCoverageCheck::describe() const {
+  std::ostringstream s;
+  s << "road cells farther than " << maxDistance << " cells from a road: " << far << " of " << roadCells
+    << " (" << removedOnPurpose() << " more removed on purpose: " << farRemovedPatches
+    << " extraneous or 2x2 patches (A3, A4.3), " << farRemovedCycles << " short-cycle roads (B4))";
+  for (size_t k = 0; k < farSamples.size(); ++k)
+    s << (k == 0 ? "; far cells at column,row " : ", ") << farSamples[k].col << "," << farSamples[k].row;
+  if (far > farSamples.size()) s << ", ...";
+  return s.str();
+}
+
+RoadCoverageCheck checkRoadCoverage(const Grid<std::uint8_t>& landUse, const Grid<std::uint8_t>& cleaned,
+                                    const RoadNetwork& network,
+                                    const std::vector<std::array<Vec2, 2>>& cycleRemovedLinks,
+                                    double maxDistance) {
+  RoadCoverageCheck check;
+  check.maxDistance = maxDistance;
+  const int w = landUse.width, h = landUse.height;
+  if (w <= 0 || h <= 0) return check;
+  std::vector<std::uint8_t> nearRoad(static_cast<size_t>(w) * h, 0);
+  for (const NetworkSegment& s : network.segments) {
+    if (s.roadClass == RoadClass::Perimeter) continue;
+    for (size_t k = 0; k + 1 < s.points.size(); ++k)
+      markWithin(nearRoad, w, h, s.points[k], s.points[k + 1], maxDistance);
+    if (s.points.size() == 1) markWithin(nearRoad, w, h, s.points[0], s.points[0], maxDistance);
+  }
+  std::vector<std::uint8_t> nearRemoved;
+  if (!cycleRemovedLinks.empty()) {
+    nearRemoved.assign(nearRoad.size(), 0);
+    for (const auto& [a, b] : cycleRemovedLinks) markWithin(nearRemoved, w, h, a, b, maxDistance);
+  }
+  const bool haveCleaned = cleaned.width == w && cleaned.height == h;
+  for (size_t i = 0; i < landUse.cells.size(); ++i) {
+    if (!isRoadCode(landUse.cells[i])) continue;
+    ++check.roadCells;
+    if (nearRoad[i]) continue;
+    if (haveCleaned && cleaned.cells[i] == kRemovedRoad) {
+      ++check.farRemovedPatches;
+    } else if (!nearRemoved.empty() && nearRemoved[i]) {
+      ++check.farRemovedCycles;
+    } else {
+      ++check.far;
+      if (check.farSamples.size() < 5)
+        check.farSamples.push_back({static_cast<std::int32_t>(i % w), static_cast<std::int32_t>(i / w)});
+    }
+  }
+  return check;
 }
 
 RoadNetworkCheck checkRoadNetwork(const Layer& roads, const Layer& roadNodes) {
@@ -151,37 +274,44 @@ RoadNetworkCheck checkRoadNetwork(const Layer& roads, const Layer& roadNodes) {
       pieces.push_back({(*l)[k], (*l)[k + 1], id, static_cast<int>(k)});
     }
   }
-  forEachNearPair(pieces, [&](int i, int j) {
-    const Piece& p = pieces[i];
-    const Piece& q = pieces[j];
-    const int contact = segmentContact(p.a, p.b, q.a, q.b);
-    if (contact == 0) return;
-    if (contact == 2) {
-      // Allowed: consecutive pieces of one line sharing their vertex, or two pieces meeting at one
-      // shared end vertex that is a node (a line end) of both lines.
-      const LineString& lp = *lines[p.line];
-      const LineString& lq = *lines[q.line];
-      const bool collinear = orient(p.a, p.b, q.a) == 0 && orient(p.a, p.b, q.b) == 0;
-      Vec2 shared;
-      int sharedCount = 0;
-      for (const Vec2& u : {p.a, p.b})
-        for (const Vec2& v : {q.a, q.b})
-          if (u == v) {
-            shared = u;
-            ++sharedCount;
-          }
-      if (sharedCount == 1 && !(collinear && (onSegment(p.a, p.b, q.a == shared ? q.b : q.a) ||
-                                              onSegment(q.a, q.b, p.a == shared ? p.b : p.a)))) {
-        if (p.line == q.line && std::abs(p.index - q.index) == 1) return;
-        const bool endOfP = shared == lp.front() || shared == lp.back();
-        const bool endOfQ = shared == lq.front() || shared == lq.back();
-        if (endOfP && endOfQ && nodeAt.count(shared)) return;
-      }
-    }
+  forEachForbiddenContact(pieces, lines, nodeAt, [&](const Piece& p, const Piece&) {
     ++check.crossings;
     if (check.crossingSamples.size() < 5) check.crossingSamples.push_back((p.a + p.b) * 0.5);
   });
   return check;
+}
+
+std::size_t restoreTouchingSegments(RoadNetwork& simplified, const RoadNetwork& exact) {
+  if (simplified.segments.size() != exact.segments.size()) return 0;
+  std::unordered_set<Vec2, PointHash> nodeAt;
+  for (const NetworkNode& n : simplified.nodes) nodeAt.insert(n.position);
+  std::size_t restored = 0;
+  // Each round restores at least one segment or stops, so this ends; the exact lines are planar.
+  for (size_t round = 0; round <= simplified.segments.size(); ++round) {
+    std::vector<const LineString*> lines;
+    std::vector<Piece> pieces;
+    for (const NetworkSegment& s : simplified.segments) {
+      const int id = static_cast<int>(lines.size());
+      lines.push_back(&s.points);
+      for (size_t k = 0; k + 1 < s.points.size(); ++k)
+        if (!(s.points[k] == s.points[k + 1]))
+          pieces.push_back({s.points[k], s.points[k + 1], id, static_cast<int>(k)});
+    }
+    std::vector<char> bad(lines.size(), 0);
+    forEachForbiddenContact(pieces, lines, nodeAt, [&](const Piece& p, const Piece& q) {
+      bad[static_cast<size_t>(p.line)] = 1;
+      bad[static_cast<size_t>(q.line)] = 1;
+    });
+    std::size_t changed = 0;
+    for (size_t k = 0; k < bad.size(); ++k) {
+      if (!bad[k] || simplified.segments[k].points == exact.segments[k].points) continue;
+      simplified.segments[k].points = exact.segments[k].points;
+      ++changed;
+    }
+    if (changed == 0) break;
+    restored += changed;
+  }
+  return restored;
 }
 
 std::size_t nodeCrossingsAndContractTinyLinks(RoadGraph& graph, double minLength) {

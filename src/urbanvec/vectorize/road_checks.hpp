@@ -3,11 +3,15 @@
 // graph-level repair used as the pipeline's last step.
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
+#include "urbanvec/core/grid.hpp"
 #include "urbanvec/core/layer.hpp"
 #include "urbanvec/vectorize/road_graph.hpp"
+#include "urbanvec/vectorize/road_network.hpp"
 
 namespace urbanvec::vectorize {
 
@@ -25,6 +29,37 @@ struct RoadNetworkCheck {
 /// Checks `roads` (LineStrings) against `roadNodes` (Points) with a uniform-grid sweep: each pair of
 /// straight pieces sharing a bucket is tested once, so the cost is near-linear in the piece count.
 RoadNetworkCheck checkRoadNetwork(const Layer& roads, const Layer& roadNodes);
+
+/// Issue 3 quality item "every road cell of the grid lies within 1.5 cells of a result road (nothing
+/// silently dropped except what the spec removes on purpose: extraneous patches, short cycles)".
+struct RoadCoverageCheck {
+  double maxDistance = 1.5;   ///< cells
+  std::size_t roadCells = 0;  ///< road cells (codes 2 and 3) of the input grid
+  std::size_t far = 0;        ///< farther than maxDistance from every road, and not removed on purpose
+  std::size_t farRemovedPatches = 0;  ///< farther, but set to removed road by A3 (extraneous patches) or A4.3
+  std::size_t farRemovedCycles = 0;   ///< farther, but within maxDistance of a link B4 removed (short cycles)
+  std::vector<GridCell> farSamples;   ///< the first far cells in row-major order (at most 5), for messages
+  std::size_t removedOnPurpose() const { return farRemovedPatches + farRemovedCycles; }
+  bool ok() const { return far == 0; }
+  std::string describe() const;
+};
+
+/// Measures how many road cells of `landUse` (the input codes) have their centre farther than
+/// `maxDistance` cells from every primary or secondary segment of `network` (perimeter lines are no
+/// roads). A far cell is excused as removed on purpose when `cleaned` (the codes after A3/A4) marks it
+/// kRemovedRoad, or when it lies within `maxDistance` of one of `cycleRemovedLinks` (B4's removed
+/// links, internal frame). Cost: linear in grid cells plus road length (a distance mask, no search).
+RoadCoverageCheck checkRoadCoverage(const Grid<std::uint8_t>& landUse, const Grid<std::uint8_t>& cleaned,
+                                    const RoadNetwork& network,
+                                    const std::vector<std::array<Vec2, 2>>& cycleRemovedLinks,
+                                    double maxDistance = 1.5);
+
+/// [INFERENCE, output only] GEOS's topology-preserving simplification keeps lines from crossing, but it
+/// can lay two segments that share both end nodes (a thin loop left by planarization) onto the same
+/// chord. Every segment of `simplified` that touches another one anywhere but at a shared end node gets
+/// back its line from `exact` (the same network unsimplified, segment for segment), until none does.
+/// Returns the number of segments restored.
+std::size_t restoreTouchingSegments(RoadNetwork& simplified, const RoadNetwork& exact);
 
 /// [INFERENCE, not in the documents] Planarizes the graph: every pair of links that cross at an
 /// interior point gets a shared node there, and links shorter than `minLength` pw are contracted, so

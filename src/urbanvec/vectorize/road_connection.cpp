@@ -14,7 +14,8 @@ namespace urbanvec::vectorize {
 namespace {
 
 std::int64_t patchKey(std::int64_t col, std::int64_t row) {
-  return (row << 32) ^ (col & 0xffffffff);
+  // Unsigned shift: a window at the grid border has row -1.
+  return static_cast<std::int64_t>((static_cast<std::uint64_t>(row) << 32) ^ static_cast<std::uint32_t>(col));
 }
 
 /// True when b is within `hops` primary links of a.

@@ -2,9 +2,14 @@
 #include "urbanvec/vectorize/road_geometry.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <exception>
+#include <limits>
+#include <mutex>
 #include <string>
+#include <thread>
 
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/vectorize/block_outline.hpp"
@@ -247,6 +252,67 @@ std::vector<int> GeometryIndex::query(const GEOSGeometry* g) const {
   return hits;
 }
 
+GeosWorkers::GeosWorkers(int threads) {
+  const size_t n =
+      threads > 0 ? static_cast<size_t>(threads) : std::max<size_t>(1, std::thread::hardware_concurrency());
+  for (size_t i = 0; i < n; ++i) contexts_.push_back(std::make_unique<geos::Context>());
+}
+
+void GeosWorkers::run(size_t n, const std::function<void(size_t, size_t, const geos::Context&)>& body,
+                      const std::function<void(size_t)>& tick) const {
+  std::atomic<size_t> next{0};
+  std::atomic<size_t> finished{0};
+  std::atomic<bool> stop{false};
+  std::mutex mutex;
+  std::exception_ptr failure;
+  std::exception_ptr cancelled;
+  size_t failureIndex = std::numeric_limits<size_t>::max();
+  size_t reported = 0;
+  auto work = [&](size_t worker, bool caller) {
+    const geos::Context& context = *contexts_[worker];
+    while (!stop) {
+      const size_t i = next++;
+      if (i >= n) break;
+      try {
+        body(i, worker, context);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (i < failureIndex) {  // the lowest failing item, whatever the scheduling
+          failureIndex = i;
+          failure = std::current_exception();
+        }
+        stop = true;
+      }
+      ++finished;
+      if (caller && tick && !stop) {
+        const size_t now = finished;
+        try {
+          tick(now - reported);
+        } catch (...) {
+          std::lock_guard<std::mutex> lock(mutex);
+          cancelled = std::current_exception();
+          stop = true;
+        }
+        reported = now;
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  const size_t threads = std::min(contexts_.size(), n);
+  try {
+    for (size_t t = 1; t < threads; ++t) pool.emplace_back(work, t, false);
+  } catch (...) {
+    stop = true;
+    for (std::thread& t : pool) t.join();
+    throw;
+  }
+  if (n > 0) work(0, true);
+  for (std::thread& t : pool) t.join();
+  if (cancelled) std::rethrow_exception(cancelled);
+  if (failure) std::rethrow_exception(failure);
+  if (tick && finished > reported) tick(finished - reported);
+}
+
 geos::GeomPtr unionOnGrid(const geos::Context& context, std::vector<geos::GeomPtr> parts, double grid) {
   geos::GeomPtr all = context.collection(GEOS_GEOMETRYCOLLECTION, std::move(parts));
   return context.own(GEOSUnaryUnionPrec_r(context.handle(), all.get(), grid), "unary union");
@@ -296,6 +362,7 @@ RoadGeometry buildRoadGeometry(const RoadNetwork& network, const RoadGeometryOpt
   }
 
   geos::Context ctx;
+  const GeosWorkers workers(options.threads);  // outlives `raw`, which ends up holding their geometries
   const double grid = options.precisionGrid;
   RoadGeometry out;
   std::vector<RawPiece> raw;
@@ -412,37 +479,53 @@ RoadGeometry buildRoadGeometry(const RoadNetwork& network, const RoadGeometryOpt
     ticker.tick();
   }
 
-  // Overlap resolution: every piece loses what higher-priority pieces already cover.
+  // Overlap resolution: every piece loses what higher-priority pieces already cover. Each piece only
+  // reads the snapped raw pieces, so the pieces are resolved in parallel, one result slot each.
   const Progress resolve = subProgress(progress, 0.5, 1.0);
   ProgressTicker resolveTicker(resolve, "road geometry overlaps", raw.size());
-  for (RawPiece& piece : raw) piece.geom = snapToGrid(ctx, piece.geom.get(), grid);
+  {
+    std::vector<geos::GeomPtr> snapped(raw.size());
+    workers.run(raw.size(), [&](size_t i, size_t, const geos::Context& c) {
+      snapped[i] = snapToGrid(c, raw[i].geom.get(), grid);
+    });
+    for (size_t i = 0; i < raw.size(); ++i) raw[i].geom = std::move(snapped[i]);
+  }
   std::vector<const GEOSGeometry*> rawGeoms;
   for (const RawPiece& piece : raw) rawGeoms.push_back(piece.geom.get());
-  GeometryIndex index(ctx, rawGeoms);
-  for (size_t i = 0; i < raw.size(); ++i) {
-    std::vector<geos::GeomPtr> winners;
-    for (int j : index.query(raw[i].geom.get())) {
-      if (static_cast<size_t>(j) >= i) break;
-      if (GEOSIntersects_r(ctx.handle(), raw[j].geom.get(), raw[i].geom.get()) == 1)
-        winners.push_back(ctx.own(GEOSGeom_clone_r(ctx.handle(), raw[j].geom.get()), "clone"));
-    }
-    geos::GeomPtr kept;
-    if (winners.empty()) {
-      kept = ctx.own(GEOSGeom_clone_r(ctx.handle(), raw[i].geom.get()), "clone");
-    } else {
-      geos::GeomPtr cover =
-          winners.size() == 1 ? std::move(winners.front()) : unionOnGrid(ctx, std::move(winners), grid);
-      kept = ctx.own(GEOSDifferencePrec_r(ctx.handle(), raw[i].geom.get(), cover.get(), grid), "difference");
-    }
-    PavementPiece piece{{}, raw[i].kind, raw[i].roadClass, raw[i].segment, raw[i].node};
-    for (Polygon& p : ctx.toPolygons(kept.get())) {
-      if (!(area(p) >= grid)) continue;  // precision crumbs
-      orientClockwise(p);                // spec: clockwise polygons
-      piece.shape.push_back(std::move(p));
-    }
-    if (!piece.shape.empty()) out.pieces.push_back(std::move(piece));
-    resolveTicker.tick();
+  std::vector<std::vector<int>> candidates(raw.size());
+  {
+    GeometryIndex index(ctx, rawGeoms);
+    for (size_t i = 0; i < raw.size(); ++i) candidates[i] = index.query(raw[i].geom.get());
   }
+  std::vector<PavementPiece> resolved(raw.size());
+  workers.run(
+      raw.size(),
+      [&](size_t i, size_t, const geos::Context& c) {
+        std::vector<geos::GeomPtr> winners;
+        for (int j : candidates[i]) {
+          if (static_cast<size_t>(j) >= i) break;
+          if (GEOSIntersects_r(c.handle(), raw[j].geom.get(), raw[i].geom.get()) == 1)
+            winners.push_back(c.own(GEOSGeom_clone_r(c.handle(), raw[j].geom.get()), "clone"));
+        }
+        geos::GeomPtr kept;
+        if (winners.empty()) {
+          kept = c.own(GEOSGeom_clone_r(c.handle(), raw[i].geom.get()), "clone");
+        } else {
+          geos::GeomPtr cover =
+              winners.size() == 1 ? std::move(winners.front()) : unionOnGrid(c, std::move(winners), grid);
+          kept = c.own(GEOSDifferencePrec_r(c.handle(), raw[i].geom.get(), cover.get(), grid), "difference");
+        }
+        PavementPiece& piece = resolved[i];
+        piece = {{}, raw[i].kind, raw[i].roadClass, raw[i].segment, raw[i].node};
+        for (Polygon& p : c.toPolygons(kept.get())) {
+          if (!(area(p) >= grid)) continue;  // precision crumbs
+          orientClockwise(p);                // spec: clockwise polygons
+          piece.shape.push_back(std::move(p));
+        }
+      },
+      [&](size_t done) { resolveTicker.tick(done); });
+  for (PavementPiece& piece : resolved)
+    if (!piece.shape.empty()) out.pieces.push_back(std::move(piece));
   resolveTicker.finish();
   return out;
 }

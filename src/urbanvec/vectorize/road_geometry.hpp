@@ -11,6 +11,8 @@
 #include <geos_c.h>
 
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <string_view>
 #include <vector>
 
@@ -49,6 +51,8 @@ struct RoadGeometryOptions {
   int curbReturnSegments = 4;
   /// Overlay precision grid, in cells (see kDefaultPrecisionGrid).
   double precisionGrid = kDefaultPrecisionGrid;
+  /// Worker threads of the overlap resolution; 0 = all cores. Does not change the output.
+  int threads = 0;
 };
 
 enum class PavementKind : std::uint8_t { Segment, Intersection, CulDeSac };
@@ -105,6 +109,28 @@ class GeometryIndex {
   const geos::Context& context_;
   GEOSSTRtree* tree_ = nullptr;
   std::vector<int> ids_;
+};
+
+/// Worker threads with one GEOS context each, for the independent per-item loops of the block stages.
+/// Geometries made on a worker's context stay valid as long as the pool does.
+class GeosWorkers {
+ public:
+  /// `threads` workers; 0 = all cores.
+  explicit GeosWorkers(int threads);
+  GeosWorkers(const GeosWorkers&) = delete;
+  GeosWorkers& operator=(const GeosWorkers&) = delete;
+  size_t size() const { return contexts_.size(); }
+  /// Runs body(i, worker, context) for every i in [0, n): `worker` in [0, size()) names the thread
+  /// (for per-thread scratch space) and `context` is its GEOS context. Items are claimed in increasing
+  /// order; the calling thread is worker 0. `tick`, when set, runs on the calling thread only, with the
+  /// number of items finished since its previous call (for progress; it may throw Cancelled). The exception
+  /// of the lowest failing item is rethrown once every worker has stopped. When body(i) writes only
+  /// item i's own slot, the result does not depend on the thread count.
+  void run(size_t n, const std::function<void(size_t, size_t, const geos::Context&)>& body,
+           const std::function<void(size_t)>& tick = {}) const;
+
+ private:
+  std::vector<std::unique_ptr<geos::Context>> contexts_;
 };
 
 /// Unary union of `parts` on the precision grid; an empty input gives an empty collection.

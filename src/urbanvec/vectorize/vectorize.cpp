@@ -159,9 +159,12 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
                   s.perimeterEndsLeft, " left");
   });
   run("B4", "cycle removal", 0.15, true, [&](const Progress& p) {
-    const CycleRemovalStats s = removeShortCycles(graph, options.cycles, p);
+    CycleRemovalOptions cycles = options.cycles;
+    if (options.keepDevelopedCycles) cycles.landUse = &result.cells;
+    CycleRemovalStats s = removeShortCycles(graph, cycles, p);
+    result.cycleRemovedLinks = std::move(s.removedLinks);
     return counts(s.crossingsNoded, " crossings noded, ", s.segmentsRemoved, " segments removed in ",
-                  s.rounds, " rounds");
+                  s.rounds, " rounds, ", s.developedFacesKept, " faces around developed land kept");
   });
   run("B5", "intersection simplification", 0.05, true, [&](const Progress& p) {
     const IntersectionSimplificationStats s = simplifyIntersections(graph, options.intersections, p);
@@ -185,16 +188,20 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
     }
     reportProgress(p, 0.5, "road output");
     result.network = buildRoadNetwork(graph, options.outputSimplification);
+    std::size_t restored = 0;
+    if (options.outputSimplification > 0)
+      restored = restoreTouchingSegments(result.network, buildRoadNetwork(graph, 0.0));
     std::vector<Layer> layers = roadLayers(result.network, input.spec);
     const std::size_t segments = layers[0].features.size();
     for (Layer& l : layers) result.layers.push_back(std::move(l));
-    return counts(noded, " crossings noded, ", segments, " road segments");
+    return counts(noded, " crossings noded, ", segments, " road segments, ", restored,
+                  " kept unsimplified (touching another)");
   });
   if (!options.roadsOnly) {
     const auto t0 = std::chrono::steady_clock::now();
     resetPeakMemory();
-    result.city = vectorizeCity(result.network, result.cells, result.blocks, result.parcels, input.spec, options.city,
-                                subProgress(progress, 0.3, 1.0));
+    result.city = vectorizeCity(result.network, result.cells, result.blocks, result.parcels, input.spec,
+                                options.city, subProgress(progress, 0.3, 1.0));
     StageReport report;
     report.id = "C-E";
     report.name = "pavement, blocks, spines, parcels";
@@ -203,7 +210,8 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
     std::size_t parcelCount = 0;
     for (const auto& b : result.city.parcels.blocks) parcelCount += b.parcels.size();
     report.summary = counts(result.city.blocks.blocks.features.size(), " blocks, ", parcelCount, " parcels, ",
-                            result.city.blocks.stats.failsafeUses, " failsafe matches");
+                            result.city.blocks.stats.failsafeUses, " failsafe matches (",
+                            result.city.blocks.stats.failsafeWithParcels, " with parcels)");
     result.stages.push_back(report);
     for (const Layer& l : result.city.layers) result.layers.push_back(l);
   }

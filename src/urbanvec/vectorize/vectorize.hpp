@@ -3,6 +3,7 @@
 // E parcels) extend VectorizeOptions, VectorizeResult and the stage list in vectorize.cpp.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -26,13 +27,16 @@
 namespace urbanvec::vectorize {
 
 struct VectorizeOptions {
-  RawBlockOptions rawBlocks;                        ///< A2
-  RoadGraphOptions roadGraph;                       ///< A4.1–A4.7
-  PerimeterOptions perimeters;                      ///< A4.8
-  StraighteningOptions straightening;               ///< B1
-  RoadSmoothingOptions roadSmoothing;               ///< B2
-  RoadConnectionOptions connection;                 ///< B3
-  CycleRemovalOptions cycles;                       ///< B4
+  RawBlockOptions rawBlocks;           ///< A2
+  RoadGraphOptions roadGraph;          ///< A4.1–A4.7
+  PerimeterOptions perimeters;         ///< A4.8
+  StraighteningOptions straightening;  ///< B1
+  RoadSmoothingOptions roadSmoothing;  ///< B2
+  RoadConnectionOptions connection;    ///< B3
+  CycleRemovalOptions cycles;          ///< B4
+  /// B4 with Q10's "undeveloped only" flag: short cycles around developed land keep their roads
+  /// (CycleRemovalOptions::landUse); false = the documents' rule on every short cycle.
+  bool keepDevelopedCycles = true;
   IntersectionSimplificationOptions intersections;  ///< B5
   CurveSmoothingOptions curves;                     ///< B6
   /// [INFERENCE] Node crossing links and contract zero-length links after B6, so segments meet only
@@ -73,6 +77,9 @@ struct VectorizeResult {
   std::vector<StageReport> stages;
   /// (stage id + name, graph) after each graph stage when keepStageGraphs.
   std::vector<std::pair<std::string, RoadGraph>> stageGraphs;
+  /// The road links B4 removed (short cycles), as they lay when removed, internal frame: the roads the
+  /// pipeline dropped on purpose, for checkRoadCoverage (road_checks.hpp).
+  std::vector<std::array<Vec2, 2>> cycleRemovedLinks;
   std::vector<std::string> warnings;
   /// Stages C-E (empty when roadsOnly).
   CityResult city;
