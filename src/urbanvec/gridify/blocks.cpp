@@ -8,6 +8,30 @@
 
 namespace urbanvec::gridify {
 
+namespace {
+
+/// Whether polygons touch the extent's border, within a tolerance relative to the extent's size.
+class ExtentBorder {
+ public:
+  ExtentBorder(const geos::Context& ctx, const Extent& box)
+      : ctx_(ctx),
+        border_(ctx.lineString(boxPolygon(box).outer)),
+        tolerance_(1e-7 * std::fmax(1.0, std::fmax(box.maxX - box.minX, box.maxY - box.minY))) {}
+  bool touches(const Polygon& polygon) const {
+    geos::GeomPtr geom = ctx_.polygon(polygon);
+    double gap = 0.0;
+    GEOSDistance_r(ctx_.handle(), geom.get(), border_.get(), &gap);
+    return gap <= tolerance_;
+  }
+
+ private:
+  const geos::Context& ctx_;
+  geos::GeomPtr border_;
+  double tolerance_;
+};
+
+}  // namespace
+
 std::vector<TruthBlock> roadBlocks(const MultiLineString& roads, const Extent& box,
                                    const std::vector<MultiPolygon>& water, double minArea) {
   geos::Context ctx;
@@ -18,18 +42,15 @@ std::vector<TruthBlock> roadBlocks(const MultiLineString& roads, const Extent& b
   const GEOSGeometry* nodedRaw = noded.get();
   geos::GeomPtr faces = ctx.own(GEOSPolygonize_r(ctx.handle(), &nodedRaw, 1), "polygonize roads");
   geos::GeomPtr wet = water.empty() ? nullptr : unionPolygons(ctx, water);
-  geos::GeomPtr border = ctx.lineString(boxPolygon(box).outer);
-  const double tolerance = 1e-7 * std::fmax(1.0, std::fmax(box.maxX - box.minX, box.maxY - box.minY));
+  const ExtentBorder border(ctx, box);
 
   std::vector<TruthBlock> blocks;
   for (const Polygon& face : ctx.toPolygons(faces.get())) {
-    geos::GeomPtr faceGeom = ctx.polygon(face);
-    double gap = 0.0;
-    GEOSDistance_r(ctx.handle(), faceGeom.get(), border.get(), &gap);
-    const bool external = gap <= tolerance;
+    const bool external = border.touches(face);
     MultiPolygon dry{face};
     if (wet) {
-      geos::GeomPtr rest = ctx.own(GEOSDifference_r(ctx.handle(), faceGeom.get(), wet.get()), "cut water");
+      geos::GeomPtr rest =
+          ctx.own(GEOSDifference_r(ctx.handle(), ctx.polygon(face).get(), wet.get()), "cut water");
       dry = ctx.toPolygons(rest.get());
     }
     for (Polygon& part : dry)
@@ -41,8 +62,7 @@ std::vector<TruthBlock> roadBlocks(const MultiLineString& roads, const Extent& b
 std::vector<TruthBlock> curbBlocks(const std::vector<TruthBlock>& faces, const MultiLineString& roads,
                                    const std::vector<double>& halfWidths, const Extent& box, double minArea) {
   geos::Context ctx;
-  geos::GeomPtr border = ctx.lineString(boxPolygon(box).outer);
-  const double tolerance = 1e-7 * std::fmax(1.0, std::fmax(box.maxX - box.minX, box.maxY - box.minY));
+  const ExtentBorder border(ctx, box);
   std::vector<MultiPolygon> corridors;
   corridors.reserve(roads.size());
   for (std::size_t i = 0; i < roads.size(); ++i) {
@@ -64,13 +84,7 @@ std::vector<TruthBlock> curbBlocks(const std::vector<TruthBlock>& faces, const M
     }
     for (Polygon& part : land) {
       if (area(part) < minArea) continue;
-      bool external = face.external;
-      if (external) {
-        geos::GeomPtr partGeom = ctx.polygon(part);
-        double gap = 0.0;
-        GEOSDistance_r(ctx.handle(), partGeom.get(), border.get(), &gap);
-        external = gap <= tolerance;
-      }
+      const bool external = face.external && border.touches(part);
       blocks.push_back({std::move(part), external});
     }
   }
