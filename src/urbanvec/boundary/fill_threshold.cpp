@@ -2,12 +2,34 @@
 #include "urbanvec/boundary/fill_threshold.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
+#include "urbanvec/boundary/value_range.hpp"
 #include "urbanvec/core/error.hpp"
 
 namespace urbanvec::boundary {
+
+namespace {
+
+/// The largest float f <= threshold (NaN for NaN): for every float v, v > f exactly when
+/// double(v) > threshold, so the mask compares floats with floats, four pixels per instruction.
+float largestFloatNotAbove(double threshold) {
+  constexpr double kMax = std::numeric_limits<float>::max();
+  if (std::isnan(threshold)) return std::numeric_limits<float>::quiet_NaN();
+  if (threshold >= kMax)
+    return threshold == std::numeric_limits<double>::infinity() ? std::numeric_limits<float>::infinity()
+                                                                : std::numeric_limits<float>::max();
+  if (threshold < -kMax) return -std::numeric_limits<float>::infinity();
+  const float nearest = static_cast<float>(threshold);
+  return static_cast<double>(nearest) > threshold
+             ? std::nextafter(nearest, -std::numeric_limits<float>::infinity())
+             : nearest;
+}
+
+}  // namespace
 
 FillThreshold fillThreshold(const Grid<float>& image, const FillThresholdOptions& options) {
   if (!(options.minimumFill > 0.0 && options.minimumFill < 1.0))
@@ -22,18 +44,30 @@ FillThreshold fillThreshold(const Grid<float>& image, const FillThresholdOptions
   for (int y = 0; y < image.height; ++y) rim = std::max({rim, image.at(0, y), image.at(image.width - 1, y)});
   result.rimMaximum = rim;
 
-  const auto [lowest, highest] = std::minmax_element(image.cells.begin(), image.cells.end());
-  const double minimum = *lowest;
-  const double range = static_cast<double>(*highest) - minimum;
+  const auto [lowest, highest] = valueRange(image.cells);
+  const double minimum = lowest;
+  const double range = static_cast<double>(highest) - minimum;
   const int bins = options.histogramBins;
   result.binWidth = range / bins;
   std::vector<std::int64_t> histogram(static_cast<size_t>(bins), 0);
   if (range > 0.0) {
     const double toBin = bins / range;
-    for (float v : image.cells) {
-      const int bin = std::min(bins - 1, static_cast<int>((v - minimum) * toBin));
-      ++histogram[static_cast<size_t>(bin)];
-    }
+    // Neighbouring pixels mostly share a bin: counting them in turn into four histograms keeps each
+    // increment from waiting for the previous one.
+    constexpr size_t kCopies = 4;
+    std::vector<std::int64_t> counts(kCopies * static_cast<size_t>(bins), 0);
+    const size_t n = image.size();
+    const float* values = image.cells.data();
+    auto binOf = [&](float v) {
+      return static_cast<size_t>(std::min(bins - 1, static_cast<int>((v - minimum) * toBin)));
+    };
+    size_t i = 0;
+    for (; i + kCopies <= n; i += kCopies)
+      for (size_t k = 0; k < kCopies; ++k) ++counts[k * static_cast<size_t>(bins) + binOf(values[i + k])];
+    for (; i < n; ++i) ++counts[binOf(values[i])];
+    for (size_t k = 0; k < kCopies; ++k)
+      for (size_t b = 0; b < static_cast<size_t>(bins); ++b)
+        histogram[b] += counts[k * static_cast<size_t>(bins) + b];
   } else {
     histogram[0] = static_cast<std::int64_t>(image.size());
   }
@@ -53,8 +87,11 @@ FillThreshold fillThreshold(const Grid<float>& image, const FillThresholdOptions
 }
 
 Grid<std::uint8_t> applyThreshold(const Grid<float>& image, double threshold) {
+  const float below = largestFloatNotAbove(threshold);
   Grid<std::uint8_t> mask(image.width, image.height, 0);
-  for (size_t i = 0; i < image.size(); ++i) mask.cells[i] = image.cells[i] > threshold ? 1 : 0;
+  const float* in = image.cells.data();
+  std::uint8_t* out = mask.cells.data();
+  for (size_t i = 0; i < image.size(); ++i) out[i] = in[i] > below ? 1 : 0;
   return mask;
 }
 

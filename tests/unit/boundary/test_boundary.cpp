@@ -4,7 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
+#include <limits>
 #include <random>
+#include <vector>
 
 #include "urbanvec/boundary/cell_outline.hpp"
 #include "urbanvec/boundary/contour_trace.hpp"
@@ -30,6 +33,104 @@ Grid<std::uint8_t> maskFrom(const std::vector<std::string>& rows) {
 
 bool eightAdjacent(const Pixel& a, const Pixel& b) {
   return std::max(std::abs(a.x - b.x), std::abs(a.y - b.y)) == 1;
+}
+
+// Straightforward versions of the generator stages, one pixel at a time and in the order the spec
+// describes them. The library's stages are faster rewrites and must give the same bits.
+
+/// Layered noise: std::mt19937 layer by layer, every layer widened, then added to the whole image.
+Grid<float> referenceNoise(const PerlinOptions& o, PerlinSeed seed) {
+  std::mt19937 generator(seed);
+  const int size = o.size;
+  Grid<float> noise(size, size, 0.0f);
+  double weightSum = 0.0;
+  for (int layer = o.startLayer; layer <= o.endLayer; ++layer) {
+    const int cells = 1 << layer;
+    Grid<float> values(cells, cells);
+    for (float& v : values.cells) v = static_cast<float>(generator() >> 8) * (255.0f / 16777216.0f);
+    const double weight = std::pow(o.persistence, layer + 1);
+    weightSum += weight;
+    std::vector<int> lo(static_cast<size_t>(size)), hi(static_cast<size_t>(size));
+    std::vector<float> frac(static_cast<size_t>(size));
+    for (int i = 0; i < size; ++i) {
+      const double u = std::clamp((i + 0.5) / size * cells - 0.5, 0.0, static_cast<double>(cells - 1));
+      lo[static_cast<size_t>(i)] = static_cast<int>(std::floor(u));
+      hi[static_cast<size_t>(i)] = std::min(lo[static_cast<size_t>(i)] + 1, cells - 1);
+      frac[static_cast<size_t>(i)] = static_cast<float>(u - lo[static_cast<size_t>(i)]);
+    }
+    Grid<float> widened(size, cells);
+    for (int row = 0; row < cells; ++row)
+      for (int x = 0; x < size; ++x) {
+        const float a = values.at(lo[static_cast<size_t>(x)], row);
+        const float b = values.at(hi[static_cast<size_t>(x)], row);
+        widened.at(x, row) = a + (b - a) * frac[static_cast<size_t>(x)];
+      }
+    const float w = static_cast<float>(weight);
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) {
+        const float a = widened.at(x, lo[static_cast<size_t>(y)]);
+        const float b = widened.at(x, hi[static_cast<size_t>(y)]);
+        noise.at(x, y) += w * (a + (b - a) * frac[static_cast<size_t>(y)]);
+      }
+  }
+  const float scale = static_cast<float>(1.0 / weightSum);
+  for (float& v : noise.cells) v *= scale;
+  return noise;
+}
+
+/// Eq. 3.1 pixel by pixel.
+Grid<float> referenceTransform(const Grid<float>& noise, const RadialTransformOptions& o) {
+  const auto [lowest, highest] = std::minmax_element(noise.cells.begin(), noise.cells.end());
+  const double minimum = *lowest;
+  const double range = *highest - minimum;
+  const double toUnit = range > 0.0 ? 1.0 / range : 0.0;
+  const double c2 = o.noiseWeight;
+  const double c1 = 1.0 - c2;
+  const double cx = noise.width / 2.0;
+  const double cy = noise.height / 2.0;
+  const double radius = std::min(cx, cy);
+  const float noiseScale = static_cast<float>(c2 * toUnit);
+  const float noiseOffset = static_cast<float>(-c2 * toUnit * minimum);
+  Grid<float> out(noise.width, noise.height);
+  for (int y = 0; y < noise.height; ++y)
+    for (int x = 0; x < noise.width; ++x) {
+      const double dx = (x + 0.5 - cx) / radius;
+      const double dy = (y + 0.5 - cy) / radius;
+      const double squared = std::min(1.0, dx * dx + dy * dy);
+      const double slope = o.slopeExponent == 2.0   ? squared
+                           : o.slopeExponent == 1.0 ? std::sqrt(squared)
+                                                    : std::pow(squared, o.slopeExponent / 2.0);
+      out.at(x, y) = static_cast<float>(c1 * (1.0 - slope)) + noiseScale * noise.at(x, y) + noiseOffset;
+    }
+  return out;
+}
+
+/// Method 4's histogram with one counter per bin and std::minmax_element.
+FillThreshold referenceThreshold(const Grid<float>& image, const FillThresholdOptions& o) {
+  FillThreshold r;
+  float rim = image.at(0, 0);
+  for (int x = 0; x < image.width; ++x) rim = std::max({rim, image.at(x, 0), image.at(x, image.height - 1)});
+  for (int y = 0; y < image.height; ++y) rim = std::max({rim, image.at(0, y), image.at(image.width - 1, y)});
+  r.rimMaximum = rim;
+  const auto [lowest, highest] = std::minmax_element(image.cells.begin(), image.cells.end());
+  const double minimum = *lowest;
+  const double range = static_cast<double>(*highest) - minimum;
+  const int bins = o.histogramBins;
+  r.binWidth = range / bins;
+  std::vector<std::int64_t> histogram(static_cast<size_t>(bins), 0);
+  for (float v : image.cells)
+    ++histogram[static_cast<size_t>(std::min(bins - 1, static_cast<int>((v - minimum) * (bins / range))))];
+  double stillToFill = o.minimumFill * static_cast<double>(image.size());
+  int bin = bins - 1;
+  for (; bin > 0; --bin) {
+    stillToFill -= static_cast<double>(histogram[static_cast<size_t>(bin)]);
+    if (stillToFill <= 0.0) break;
+  }
+  r.thresholdBin = bin;
+  r.thresholdBinCount = histogram[static_cast<size_t>(bin)];
+  r.threshold = minimum + bin * r.binWidth;
+  r.aboveRim = r.threshold > r.rimMaximum;
+  return r;
 }
 
 }  // namespace
@@ -138,6 +239,118 @@ TEST(FillThreshold, FailsWhenTheFillNeedsRimValues) {
   EXPECT_LE(r.threshold, r.rimMaximum);
   o.minimumFill = 1.0;
   EXPECT_THROW(fillThreshold(radialTransform(perlinNoise(noise, 9), t), o), Error);
+}
+
+TEST(PerlinNoise, RandomGridIsTheMersenneTwisterSequence) {
+  // One layer at full size with weight 1 is the random grid itself: 4096 draws, several refills of
+  // the 624-number state, must follow std::mt19937.
+  PerlinOptions o;
+  o.size = 64;
+  o.startLayer = 6;
+  o.endLayer = 6;
+  o.persistence = 1.0;
+  const Grid<float> n = perlinNoise(o, 2770721032u);
+  std::mt19937 reference(2770721032u);
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x)
+      ASSERT_EQ(n.at(x, y), static_cast<float>(reference() >> 8) * (255.0f / 16777216.0f)) << x << "," << y;
+}
+
+TEST(PerlinNoise, MatchesTheLayerByLayerDefinitionBitForBit) {
+  struct Setup {
+    int size, start, end;
+    double persistence;
+  };
+  // The thesis's size, a size that is not a power of two (no layer samples one value per pixel), and
+  // the literal persistence.
+  for (const Setup& s : {Setup{512, 2, 9, 0.7}, Setup{100, 0, 6, 0.7}, Setup{64, 3, 6, 0.5}}) {
+    PerlinOptions o;
+    o.size = s.size;
+    o.startLayer = s.start;
+    o.endLayer = s.end;
+    o.persistence = s.persistence;
+    for (PerlinSeed seed : {1u, 3468463229u})
+      EXPECT_EQ(perlinNoise(o, seed).cells, referenceNoise(o, seed).cells);
+  }
+}
+
+TEST(RadialTransform, MatchesEquation31PixelByPixel) {
+  PerlinOptions noise;
+  noise.size = 64;
+  noise.startLayer = 2;
+  noise.endLayer = 6;
+  const Grid<float> square = perlinNoise(noise, 11);
+  Grid<float> oblong(37, 20);  // odd width, centre between pixels in y only
+  for (size_t i = 0; i < oblong.cells.size(); ++i) oblong.cells[i] = square.cells[i];
+  for (double exponent : {1.0, 2.0, 1.5})
+    for (double c2 : {0.0, 0.38, 1.0}) {
+      RadialTransformOptions o;
+      o.slopeExponent = exponent;
+      o.noiseWeight = c2;
+      EXPECT_EQ(radialTransform(square, o).cells, referenceTransform(square, o).cells)
+          << exponent << " " << c2;
+      EXPECT_EQ(radialTransform(oblong, o).cells, referenceTransform(oblong, o).cells)
+          << exponent << " " << c2;
+    }
+}
+
+TEST(FillThreshold, MatchesTheSingleHistogramDefinition) {
+  for (PerlinSeed seed : {1u, 2u, 3u}) {
+    PerlinOptions noise;
+    noise.size = 128;
+    noise.startLayer = 2;
+    noise.endLayer = 7;
+    Grid<float> image = radialTransform(perlinNoise(noise, seed), {});
+    image.cells.pop_back();  // 127 x 129: a pixel count that is no multiple of the four histograms
+    image.width = 127;
+    image.height = 129;
+    for (double fill : {0.2, 0.28, 0.4}) {
+      FillThresholdOptions o;
+      o.minimumFill = fill;
+      const FillThreshold a = fillThreshold(image, o);
+      const FillThreshold b = referenceThreshold(image, o);
+      EXPECT_EQ(a.rimMaximum, b.rimMaximum);
+      EXPECT_EQ(a.threshold, b.threshold);
+      EXPECT_EQ(a.binWidth, b.binWidth);
+      EXPECT_EQ(a.thresholdBin, b.thresholdBin);
+      EXPECT_EQ(a.thresholdBinCount, b.thresholdBinCount);
+      EXPECT_EQ(a.aboveRim, b.aboveRim);
+    }
+  }
+}
+
+TEST(FillThreshold, MaskComparesEachFloatWithTheDoubleThreshold) {
+  // Pixels equal to, next to and far from thresholds that floats can and cannot represent.
+  const float values[] = {0.0f,
+                          0.1f,
+                          std::nextafter(0.1f, 1.0f),
+                          std::nextafter(0.1f, 0.0f),
+                          0.5f,
+                          1.0f,
+                          -2.0f,
+                          3.0e38f,
+                          std::numeric_limits<float>::max(),
+                          std::numeric_limits<float>::infinity()};
+  Grid<float> image(static_cast<int>(std::size(values)), 1);
+  std::copy(std::begin(values), std::end(values), image.cells.begin());
+  const double thresholds[] = {0.0,
+                               0.1,
+                               static_cast<double>(0.1f),
+                               std::nextafter(static_cast<double>(0.1f), 1.0),
+                               std::nextafter(static_cast<double>(0.1f), 0.0),
+                               0.5,
+                               -1e300,
+                               3.0e38,
+                               static_cast<double>(std::numeric_limits<float>::max()),
+                               1e300,
+                               std::numeric_limits<double>::infinity(),
+                               -std::numeric_limits<double>::infinity(),
+                               std::numeric_limits<double>::quiet_NaN()};
+  for (double t : thresholds) {
+    const Grid<std::uint8_t> mask = applyThreshold(image, t);
+    for (size_t i = 0; i < image.cells.size(); ++i)
+      EXPECT_EQ(mask.cells[i], static_cast<double>(image.cells[i]) > t ? 1 : 0) << values[i] << " > " << t;
+  }
 }
 
 TEST(ContourTrace, ClosedOuterBoundaryOfAnIslandWithABridgeAndAHole) {

@@ -1,6 +1,7 @@
 // Realism metrics of spec wijgerse-boundary.md §6-§8 on shapes with known answers.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -47,6 +48,83 @@ Ring kochSnowflake(double side, int depth) {
   Ring ring(points.begin(), points.end());
   ring.push_back(ring.front());
   return ring;
+}
+
+/// A rough closed outline on the half-pixel lattice, like a traced city boundary: a wobbly circle of
+/// radius ~100 with straight runs and 1-pixel steps.
+Ring roughOutline(int vertices) {
+  Ring ring;
+  for (int i = 0; i < vertices; ++i) {
+    const double a = 2.0 * M_PI * i / vertices;
+    const double r = 100 + 15 * std::sin(5 * a) + 8 * std::sin(17 * a + 1) + 3 * std::sin(53 * a + 2);
+    const Vec2 p{std::round(2 * r * std::cos(a)) / 2, std::round(2 * r * std::sin(a)) / 2};
+    if (ring.empty() || p != ring.back()) ring.push_back(p);
+  }
+  if (ring.back() == ring.front()) ring.pop_back();
+  ring.push_back(ring.front());
+  return ring;
+}
+
+/// The structured walk as spec §6.2 defines it, one walk at a time: from the current point, test the
+/// ring's vertices in order; the chord ends on the segment into the first vertex at least a chord
+/// away. The library walks several at once and must give the same bits.
+StructuredWalk referenceWalk(const Ring& ring, const StructuredWalkOptions& o) {
+  std::vector<Vec2> v(ring.begin(), ring.end() - 1);
+  const size_t n = v.size();
+  auto at = [&](size_t i) { return v[i % n]; };
+  double perimeter = 0.0;
+  for (size_t i = 0; i < n; ++i) perimeter += distance(at(i), at(i + 1));
+  StructuredWalk result;
+  result.vertices = n;
+  result.baseChord = o.baseChord > 0.0 ? o.baseChord : perimeter / n;
+  for (int k = 0; k < o.scales; ++k) {
+    WalkScale scale;
+    scale.chord = result.baseChord * std::pow(o.scaleFactor, k);
+    const double chord2 = scale.chord * scale.chord;
+    double countSum = 0.0, meanSum = 0.0, fullSum = 0.0;
+    size_t starts = 0;
+    for (size_t start = 0; start < n; start += static_cast<size_t>(o.skip), ++starts) {
+      size_t segment = start;
+      double t = 0.0;
+      Vec2 centre = at(start);
+      long full = 0;
+      double leftover = 0.0;
+      while (true) {
+        size_t exit = segment + 1;
+        while (exit <= start + n) {
+          const Vec2 e = at(exit) - centre;
+          if (e.x * e.x + e.y * e.y >= chord2) break;
+          ++exit;
+        }
+        if (exit > start + n) {
+          leftover = distance(at(start), centre);
+          break;
+        }
+        const size_t s = exit - 1;
+        const Vec2 a = at(s);
+        const Vec2 d = at(exit) - a;
+        const Vec2 f = a - centre;
+        const double fd = dot(f, d);
+        const double disc = std::max(0.0, fd * fd - dot(d, d) * (dot(f, f) - chord2));
+        const double root =
+            std::clamp((-fd + std::sqrt(disc)) * (1.0 / dot(d, d)), s == segment ? t : 0.0, 1.0);
+        centre = a + d * root;
+        segment = s;
+        t = root;
+        ++full;
+      }
+      const double chords = full + 1.0;
+      countSum += chords;
+      meanSum += (full * scale.chord + leftover) / chords;
+      fullSum += full;
+    }
+    scale.chordCount = countSum / starts;
+    scale.meanChord = meanSum / starts;
+    scale.fullChords = fullSum / starts;
+    result.startVertices = starts;
+    result.scales.push_back(scale);
+  }
+  return result;
 }
 
 }  // namespace
@@ -143,6 +221,33 @@ TEST(StructuredWalk, LeftoverChordIsCountedAndShorterThanTheChord) {
   const double leftover = s.chordCount * s.meanChord - s.fullChords * 3.0;
   EXPECT_EQ(s.fullChords, 12.0);
   EXPECT_NEAR(leftover, 1.267454, 1e-6);
+}
+
+TEST(StructuredWalk, MatchesTheOneWalkAtATimeDefinitionBitForBit) {
+  // Start counts that fill the six lanes and ones that leave lanes idle; rings from 4 to 3000 vertices.
+  const Ring square{{0, 0}, {10, 0}, {10, 10}, {0, 10}, {0, 0}};
+  const Ring rings[] = {roughOutline(3000), roughOutline(700), kochSnowflake(81.0, 3), circle(50.0, 301),
+                        square};
+  for (const Ring& ring : rings)
+    for (int skip : {1, 2, 3, 5, 15}) {
+      StructuredWalkOptions o;
+      o.skip = skip;
+      if (ring.size() < 10) o.baseChord = 3.0;
+      const StructuredWalk a = structuredWalk(ring, o);
+      const StructuredWalk b = referenceWalk(ring, o);
+      ASSERT_EQ(a.vertices, b.vertices);
+      EXPECT_EQ(a.startVertices, b.startVertices);
+      EXPECT_EQ(a.baseChord, b.baseChord);
+      ASSERT_EQ(a.scales.size(), b.scales.size());
+      for (size_t k = 0; k < a.scales.size(); ++k) {
+        EXPECT_EQ(a.scales[k].chord, b.scales[k].chord);
+        EXPECT_EQ(a.scales[k].chordCount, b.scales[k].chordCount)
+            << ring.size() << " skip " << skip << " scale " << k;
+        EXPECT_EQ(a.scales[k].meanChord, b.scales[k].meanChord)
+            << ring.size() << " skip " << skip << " scale " << k;
+        EXPECT_EQ(a.scales[k].fullChords, b.scales[k].fullChords);
+      }
+    }
 }
 
 TEST(StructuredWalk, RejectsDegenerateRingsAndOptions) {
