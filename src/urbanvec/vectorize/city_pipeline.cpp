@@ -238,10 +238,12 @@ CityResult vectorizeCity(const RoadNetwork& network, const Grid<std::uint8_t>& c
   BlocksOptions blocksOptions = options.blocks;
   blocksOptions.road.threads = options.parcels.threads;  // one thread setting for every parallel stage
   result.blocks = vectorizeBlocks(network, city, grid, blocksOptions, subProgress(progress, 0.0, 0.35));
+  releaseFreedMemory();  // the overlays of C-D5
 
   reportProgress(progress, 0.35, "road frontage");
   const std::vector<MultiLineString> facing =
       roadFacingEdges(result.blocks, frame, options.roadFacingTolerance, options.parcels.threads);
+  releaseFreedMemory();
   for (size_t i = 0; i < result.blocks.blockInfo.size(); ++i) {
     const BlockInfo& info = result.blocks.blockInfo[i];
     parcels::ParcelBlock block;

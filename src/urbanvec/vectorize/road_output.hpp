@@ -15,12 +15,16 @@
 
 namespace urbanvec::vectorize {
 
-
 /// The segments and segment-end nodes of the graph, internal frame. A node ends segments when its
 /// degree is not 2 or its two links carry different classes; rings of degree-2 nodes start at their
 /// lowest node (kind Road). When `simplifyTolerance` > 0 (pw) the segments are simplified together
 /// with GEOS's topology-preserving simplifier, which keeps their end nodes and adds no crossings.
 RoadNetwork buildRoadNetwork(const RoadGraph& graph, double simplifyTolerance = 0.0);
+
+/// Hands the heap pages that freed memory left behind back to the system (glibc's malloc_trim; a no-op
+/// elsewhere). The GEOS stages free hundreds of MB of small objects at city scale; without this they
+/// stay resident and the next stage's allocations pile on top of them.
+void releaseFreedMemory();
 
 /// `roads` (road_id, road_class, from_node, to_node, length in CRS units) and `road_nodes` (node_id,
 /// kind, degree) in world coordinates. Ids are 1-based indices into the network's vectors.
