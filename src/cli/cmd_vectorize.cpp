@@ -124,6 +124,13 @@ app::CommandSpec spec() {
           .byDefault(app::numberText(d.roadSmoothing.perimeterPasses))
           .atLeast(0)
           .isAdvanced());
+  o.push_back(option("-smooth-reach", ValueType::Real, "<cells>",
+                     "Smoothing (B2, B6) keeps every node within this distance of the road cells it was "
+                     "placed for (0 = no limit).")
+                  .byDefault(app::numberText(d.roadSmoothing.reach))
+                  .withUnit("cells")
+                  .atLeast(0)
+                  .isAdvanced());
   o.push_back(option("-straight-angle", ValueType::Real, "<degrees>",
                      "Road pairs straighter than this re-straighten their intersection (B2).")
                   .byDefault(app::numberText(d.roadSmoothing.straightAngle))
@@ -200,6 +207,8 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   options.roadSmoothing.passes = static_cast<int>(args.integer("-smooth-passes"));
   options.roadSmoothing.perimeterPasses = static_cast<int>(args.integer("-perimeter-passes"));
   options.roadSmoothing.straightAngle = args.real("-straight-angle");
+  options.roadSmoothing.reach = args.real("-smooth-reach");
+  options.curves.reach = options.roadSmoothing.reach;
   options.cycles.maxCycleNodes = static_cast<int>(args.integer("-cycle-nodes"));
   options.intersections.deadEndAngle = args.real("-dead-end-angle");
   options.intersections.primaryDistance = args.real("-primary-close");

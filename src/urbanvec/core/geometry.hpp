@@ -28,6 +28,13 @@ inline double dot(const Vec2& a, const Vec2& b) { return a.x * b.x + a.y * b.y; 
 inline double cross(const Vec2& a, const Vec2& b) { return a.x * b.y - a.y * b.x; }
 inline double length(const Vec2& a) { return std::hypot(a.x, a.y); }
 inline double distance(const Vec2& a, const Vec2& b) { return length(a - b); }
+/// Distance from p to the segment a-b (to a when the segment has no length).
+inline double distanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 ab = b - a;
+  const double len2 = dot(ab, ab);
+  const double t = len2 > 0.0 ? std::fmax(0.0, std::fmin(1.0, dot(p - a, ab) / len2)) : 0.0;
+  return distance(p, a + ab * t);
+}
 
 using LineString = std::vector<Vec2>;
 /// A closed ring; the first point is repeated at the end.

@@ -8,18 +8,6 @@
 
 namespace urbanvec::gridify {
 
-namespace {
-
-double distanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 ab = b - a;
-  const double len2 = dot(ab, ab);
-  double t = len2 > 0.0 ? dot(p - a, ab) / len2 : 0.0;
-  t = std::fmax(0.0, std::fmin(1.0, t));
-  return distance(p, a + ab * t);
-}
-
-}  // namespace
-
 MultiPolygon seaFromCoastline(const std::vector<LineString>& coastlines, const Extent& box) {
   geos::Context ctx;
   MultiLineString pieces;

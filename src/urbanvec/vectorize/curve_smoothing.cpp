@@ -44,11 +44,14 @@ CurveSmoothingStats smoothCurves(RoadGraph& graph, const CurveSmoothingOptions& 
       const int k = std::max(perSide[a], perSide[b]);
       if (k == 0) continue;
       const Vec2 pa = graph.nodes[a].p, pb = graph.nodes[b].p;
+      const Vec2 placedA = graph.nodes[a].placed, placedB = graph.nodes[b].placed;
       const NodeType type = linkType(graph, static_cast<int>(a), b);
       graph.unlink(static_cast<int>(a), b);
       int prev = static_cast<int>(a);
       for (int s = 1; s <= k; ++s) {
-        const int id = graph.addNode(pa + (pb - pa) * (static_cast<double>(s) / (k + 1)), type);
+        const double t = static_cast<double>(s) / (k + 1);
+        const int id = graph.addNode(pa + (pb - pa) * t, type);
+        graph.nodes[id].placed = placedA + (placedB - placedA) * t;
         graph.link(prev, id);
         prev = id;
         ++stats.nodesInserted;
@@ -60,7 +63,7 @@ CurveSmoothingStats smoothCurves(RoadGraph& graph, const CurveSmoothingOptions& 
   updateIntersectionFlags(graph);
   const std::vector<char> movable = smoothableRoadNodes(graph, false);
   for (int pass = 0; pass < options.passes; ++pass) {
-    averagePass(graph, movable);
+    averagePass(graph, movable, options.reach);
     ++stats.passes;
     reportProgress(progress, 0.2 + 0.8 * (pass + 1) / options.passes, "curve smoothing");
   }

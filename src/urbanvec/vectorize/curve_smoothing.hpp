@@ -5,6 +5,7 @@
 
 #include "urbanvec/core/progress.hpp"
 #include "urbanvec/vectorize/road_graph.hpp"
+#include "urbanvec/vectorize/road_smoothing.hpp"
 
 namespace urbanvec::vectorize {
 
@@ -17,6 +18,9 @@ struct CurveSmoothingOptions {
   double angleTwoNodes = 135.0;
   /// Interior angle below which 1 node is added on each side, in degrees.
   double angleOneNode = 160.0;
+  /// Largest distance a node may end up from the cells it was placed for, in pw
+  /// (kDefaultSmoothingReach); an inserted node is placed on the line between its link ends' placements.
+  double reach = kDefaultSmoothingReach;
 };
 
 struct CurveSmoothingStats {

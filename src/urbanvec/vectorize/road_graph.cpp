@@ -10,6 +10,7 @@ namespace urbanvec::vectorize {
 int RoadGraph::addNode(const Vec2& p, NodeType type, int col, int row) {
   RoadNode n;
   n.p = p;
+  n.placed = p;
   n.type = type;
   n.col = col;
   n.row = row;

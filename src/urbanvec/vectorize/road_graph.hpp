@@ -16,6 +16,9 @@ enum class NodeType : std::uint8_t { Primary, Secondary, Perimeter };
 
 struct RoadNode {
   Vec2 p;
+  /// Where the node was created (the grid placement for A4 nodes, the spot on the polyline for nodes
+  /// inserted later). Smoothing (B2, B6) keeps p within a bounded distance of it.
+  Vec2 placed;
   NodeType type = NodeType::Secondary;
   bool alive = true;
   /// Set by updateIntersectionFlags (A4.4 definition) and kept by the stages that merge clusters.

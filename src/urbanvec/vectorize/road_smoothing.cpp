@@ -4,12 +4,22 @@
 #include "urbanvec/vectorize/road_smoothing.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "urbanvec/vectorize/straightening.hpp"
 
 namespace urbanvec::vectorize {
 
-void averagePass(RoadGraph& graph, const std::vector<char>& movable) {
+double smoothingShiftLimit(NodeType type, double reach) {
+  if (reach <= 0.0) return std::numeric_limits<double>::infinity();
+  const double placementToCell = type == NodeType::Primary ? std::sqrt(0.5) : 0.0;
+  return std::max(0.0, reach - placementToCell);
+}
+
+void averagePass(RoadGraph& graph, const std::vector<char>& movable, double reach) {
+  const double limit[] = {smoothingShiftLimit(NodeType::Primary, reach),
+                          smoothingShiftLimit(NodeType::Secondary, reach)};
   std::vector<Vec2> next(graph.nodes.size());
   for (size_t i = 0; i < graph.nodes.size(); ++i) {
     const RoadNode& n = graph.nodes[i];
@@ -23,6 +33,10 @@ void averagePass(RoadGraph& graph, const std::vector<char>& movable) {
         ++count;
       }
     next[i] = sum / count;
+    const double maxShift = limit[n.type == NodeType::Primary ? 0 : 1];
+    const Vec2 shift = next[i] - n.placed;
+    const double distance = length(shift);
+    if (distance > maxShift) next[i] = n.placed + shift * (maxShift / distance);
   }
   for (size_t i = 0; i < graph.nodes.size(); ++i) graph.nodes[i].p = next[i];
 }
@@ -44,7 +58,7 @@ RoadSmoothingStats smoothRoads(RoadGraph& graph, const RoadSmoothingOptions& opt
   const std::vector<char> movable = smoothableRoadNodes(graph, true);
   for (char m : movable) stats.nodesMoved += m;
   for (int pass = 0; pass < options.passes; ++pass) {
-    averagePass(graph, movable);
+    averagePass(graph, movable, options.reach);
     reportProgress(progress, 0.8 * (pass + 1) / std::max(1, options.passes), "road smoothing");
   }
   if (options.perimeterPasses > 0) {
@@ -54,7 +68,7 @@ RoadSmoothingStats smoothRoads(RoadGraph& graph, const RoadSmoothingOptions& opt
       perimeter[i] = n.alive && n.type == NodeType::Perimeter &&
                      graph.sameTypeDegree(static_cast<int>(i)) == 2 && n.links.size() == 2;
     }
-    for (int pass = 0; pass < options.perimeterPasses; ++pass) averagePass(graph, perimeter);
+    for (int pass = 0; pass < options.perimeterPasses; ++pass) averagePass(graph, perimeter, 0.0);
   }
   stats.intersectionsMoved = straightenNearStraightPairs(graph, options.straightAngle);
   graph.sortLinksClockwise();

@@ -8,6 +8,20 @@
 
 namespace urbanvec::vectorize {
 
+/// [INFERENCE] How far from the cells a node was placed for smoothing (B2 and B6 together) may move it,
+/// in pw: a secondary node may move this far from its placement, a primary node (placed at the centre
+/// of a 2x2 window, 0.71 pw from its cells) 0.71 pw less. Unbounded averaging pulls the centreline of
+/// a bend inwards, on 2-wide primaries by more than a cell, so the outer cells of the bend end up far
+/// from every road. 1.0 pw keeps the road cells within 1.5 pw of the road with room for the output
+/// simplification, and still lets shallow staircases straighten: on the sample cities it measured
+/// best between 0.8 (turning ratio 3.3 on Monaco: primaries stay stepped) and 1.3 (more uncovered
+/// cells), see docs/vectorize.md. Values <= 0 lift the limit (the documents' rule).
+inline constexpr double kDefaultSmoothingReach = 1.0;
+
+/// How far smoothing may move a node of this type from its placement: `reach` less the distance from
+/// the placement to the farthest centre of the cells it stands for; no limit (infinity) when reach <= 0.
+double smoothingShiftLimit(NodeType type, double reach);
+
 struct RoadSmoothingOptions {
   /// [INFERENCE] Averaging passes (the documents give no count; spec §6 starts at 1; 2 measured best
   /// with the output simplification on the sample cities, see docs/vectorize.md).
@@ -18,6 +32,8 @@ struct RoadSmoothingOptions {
   /// [INFERENCE] Averaging passes for the external perimeter staircases among themselves, ends fixed
   /// (Q8); 0 = faithful-literal raw staircases.
   int perimeterPasses = 2;
+  /// Largest distance a node may end up from the cells it was placed for, in pw (kDefaultSmoothingReach).
+  double reach = kDefaultSmoothingReach;
 };
 
 struct RoadSmoothingStats {
@@ -26,8 +42,9 @@ struct RoadSmoothingStats {
 };
 
 /// One Jacobi averaging pass: each node with `movable[i]` takes the mean of its position and its
-/// same-type neighbours' positions. Shared with curve smoothing (B6).
-void averagePass(RoadGraph& graph, const std::vector<char>& movable);
+/// same-type neighbours' positions, pulled back onto the circle of radius smoothingShiftLimit(type,
+/// `reach`) around its placement when the mean lies farther. Shared with curve smoothing (B6).
+void averagePass(RoadGraph& graph, const std::vector<char>& movable, double reach);
 
 /// Which nodes B2/B6 may move: alive road nodes that are not dead ends, intersections (or, when
 /// `fixConnections`, primary/secondary connection nodes) and have at least two same-type neighbours.

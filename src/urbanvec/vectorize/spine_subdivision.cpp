@@ -12,6 +12,9 @@ namespace {
 
 /// Extra length past the boundary so the connector crosses it after noding, cells.
 constexpr double kOvershoot = 1e-7;
+/// Faces smaller than this share of the polygon are noding slivers (a cut that meets the boundary at a
+/// vertex leaves a face of ~1e-20 cells², which collapses to repeated points in world coordinates).
+constexpr double kSliverShare = 1e-9;
 
 }  // namespace
 
@@ -27,13 +30,15 @@ MultiPolygon facesInside(const geos::Context& geos, const GEOSGeometry* polygon,
   const GEOSGeometry* lines[] = {noded.get()};
   geos::GeomPtr faces = geos.own(GEOSPolygonize_r(h, lines, 1), "polygonize");
   const GEOSPreparedGeometry* prepared = GEOSPrepare_r(h, polygon);
+  double polygonArea = 0.0;
+  GEOSArea_r(h, polygon, &polygonArea);
   MultiPolygon inside;
   const int n = GEOSGetNumGeometries_r(h, faces.get());
   for (int i = 0; i < n; ++i) {
     const GEOSGeometry* face = GEOSGetGeometryN_r(h, faces.get(), i);
     double a = 0.0;
     GEOSArea_r(h, face, &a);
-    if (a <= 0.0) continue;
+    if (a <= kSliverShare * polygonArea) continue;
     geos::GeomPtr probe = geos.own(GEOSPointOnSurface_r(h, face), "pointOnSurface");
     if (GEOSPreparedContains_r(h, prepared, probe.get()) == 1) {
       MultiPolygon p = geos.toPolygons(face);

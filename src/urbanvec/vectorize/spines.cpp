@@ -16,13 +16,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-double segmentDistance(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 ab = b - a;
-  const double len2 = dot(ab, ab);
-  const double t = len2 > 0.0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
-  return distance(p, a + ab * t);
-}
-
 /// Mutable adjacency form of a spine graph; removed vertices keep their slot until compaction.
 struct Work {
   std::vector<Vec2> p;
@@ -265,7 +258,7 @@ void separateJunctions(Work& w) {
 double distanceToBoundary(const Polygon& polygon, const Vec2& p) {
   double best = 1e300;
   auto ring = [&](const Ring& r) {
-    for (size_t i = 0; i + 1 < r.size(); ++i) best = std::min(best, segmentDistance(p, r[i], r[i + 1]));
+    for (size_t i = 0; i + 1 < r.size(); ++i) best = std::min(best, distanceToSegment(p, r[i], r[i + 1]));
   };
   ring(polygon.outer);
   for (const Ring& h : polygon.holes) ring(h);

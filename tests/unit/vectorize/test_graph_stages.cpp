@@ -398,3 +398,52 @@ TEST(Connection, SecondaryCellBridgingTwoPrimariesAtACornerKeepsThemConnected) {
   connectRoads(g2, {});
   EXPECT_EQ(componentCount(g2), 2);
 }
+
+namespace {
+
+/// Farthest distance, in cells, from a road cell's centre to the graph's links (internal frame).
+double farthestRoadCell(const Grid<std::uint8_t>& cells, const RoadGraph& g) {
+  double worst = 0.0;
+  for (int row = 0; row < cells.height; ++row)
+    for (int col = 0; col < cells.width; ++col) {
+      if (!isRoadCode(cells.at(col, row))) continue;
+      const Vec2 centre{col + 0.5, cells.height - row - 0.5};
+      double best = 1e9;
+      for (size_t a = 0; a < g.nodes.size(); ++a)
+        if (g.nodes[a].alive)
+          for (int b : g.nodes[a].links)
+            best = std::min(best, distanceToSegment(centre, g.nodes[a].p, g.nodes[b].p));
+      worst = std::max(worst, best);
+    }
+  return worst;
+}
+
+/// A 2-wide primary turning back on itself: east along the top, down, west along the bottom.
+Grid<std::uint8_t> primaryHairpin() {
+  std::vector<std::string> rows = blank(26, 16);
+  for (int c = 2; c < 22; ++c) rows[3][c] = rows[4][c] = rows[11][c] = rows[12][c] = 'P';
+  for (int r = 3; r <= 12; ++r) rows[r][20] = rows[r][21] = 'P';
+  return drawGrid(rows);
+}
+
+}  // namespace
+
+TEST(Smoothing, BendsOfTwoWidePrimariesKeepTheirOuterCellsWithinOneAndAHalfCells) {
+  Grid<std::uint8_t> cells = primaryHairpin();
+  RoadGraph limited = buildRoadGraph(cells, {}).graph;
+  RoadGraph unlimited = limited;
+  smoothRoads(limited, {});
+  smoothCurves(limited, {});
+  EXPECT_LE(farthestRoadCell(cells, limited), 1.5);
+  for (const RoadNode& n : limited.nodes)
+    if (n.alive)
+      EXPECT_LE(distance(n.p, n.placed), smoothingShiftLimit(n.type, kDefaultSmoothingReach) + 1e-12);
+  // The documents' unlimited averaging cuts the corners: the outer corner cells end up farther.
+  RoadSmoothingOptions roads;
+  roads.reach = 0.0;
+  CurveSmoothingOptions curves;
+  curves.reach = 0.0;
+  smoothRoads(unlimited, roads);
+  smoothCurves(unlimited, curves);
+  EXPECT_GT(farthestRoadCell(cells, unlimited), 1.5);
+}

@@ -37,13 +37,6 @@ std::vector<std::string> smallCity() {
   return rows;
 }
 
-double distanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 ab = b - a;
-  const double len2 = dot(ab, ab);
-  const double t = len2 > 0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
-  return distance(p, a + ab * t);
-}
-
 }  // namespace
 
 TEST(Pipeline, SmallCityGivesCleanConnectedRoadsCoveringEveryRoadCell) {
