@@ -193,8 +193,6 @@ SplitVerdict checkSplit(const Polygon& parent, const Polygon& a, const Polygon& 
 
 SubdivisionParcel::SubdivisionParcel(Polygon p) : polygon(std::move(p)), area(urbanvec::area(polygon)) {}
 
-namespace {
-
 void prepare(SubdivisionParcel& parcel, const RegularSubdivisionOptions& options,
              const RoadFrontage& frontage, const geos::Context& geos) {
   parcel.prepared = true;
@@ -222,6 +220,8 @@ void prepare(SubdivisionParcel& parcel, const RegularSubdivisionOptions& options
   scanRing(simplified.outer);
   for (const Ring& h : simplified.holes) scanRing(h);
 }
+
+namespace {
 
 /// Splits a hole-free ring by the piece of the line q + s·dir that lies inside it nearest q. Returns
 /// false in degenerate cases (the line through a vertex or along an edge), which GEOS then handles.

@@ -110,6 +110,11 @@ struct SplitStats {
   std::string shortfallReason() const;
 };
 
+/// Computes the simplified copy's road-facing edges of `parcel` (trySplit does it on first use).
+/// Deterministic and free of randomness, so the tries of a block can share the work on its E1 parcels.
+void prepare(SubdivisionParcel& parcel, const RegularSubdivisionOptions& options,
+             const RoadFrontage& frontage, const geos::Context& geos);
+
 /// One random split attempt of `parcel`; on acceptance the two children are returned in `out`.
 SplitVerdict trySplit(SubdivisionParcel& parcel, const SplitRules& rules,
                       const RegularSubdivisionOptions& options, const RoadFrontage& frontage,
