@@ -125,6 +125,19 @@ double RoadFrontage::distance(const Vec2& p) const {
   return best;
 }
 
+bool RoadFrontage::within(const Vec2& p, double limit) const {
+  // The nearest point of a segment lies in its bounding box, so a box farther than the limit (plus a
+  // margin for the rounding of the projection) cannot hold a segment within it.
+  const double reach = limit + 1e-9;
+  for (const auto& s : segments_) {
+    if (p.x < std::min(s[0].x, s[1].x) - reach || p.x > std::max(s[0].x, s[1].x) + reach ||
+        p.y < std::min(s[0].y, s[1].y) - reach || p.y > std::max(s[0].y, s[1].y) + reach)
+      continue;
+    if (segmentDistance(p, s[0], s[1]) <= limit) return true;
+  }
+  return false;
+}
+
 SplitRules splitRules(const SimBlockSummary& sim, const RegularSubdivisionOptions& options) {
   SplitRules rules;
   double smallest = 0.0, residential = 0.0;
@@ -213,7 +226,7 @@ void prepare(SubdivisionParcel& parcel, const RegularSubdivisionOptions& options
       if (distance(a, b) <= 1e-9) continue;
       bool facing = true;
       for (double t : {0.25, 0.5, 0.75})
-        if (frontage.distance(a + (b - a) * t) > near) facing = false;
+        if (!frontage.within(a + (b - a) * t, near)) facing = false;
       if (facing) parcel.roadEdges.push_back({a, b});
     }
   };
