@@ -317,14 +317,6 @@ SplitVerdict trySplit(SubdivisionParcel& parcel, const SplitRules& rules,
   const Vec2 q = a + (b - a) * t;
   const Vec2 along = (b - a) / distance(a, b);
   const Vec2 normal{-along.y, along.x};
-  double minX = 1e300, minY = 1e300, maxX = -1e300, maxY = -1e300;
-  for (const Vec2& p : parcel.polygon.outer) {
-    minX = std::min(minX, p.x);
-    minY = std::min(minY, p.y);
-    maxX = std::max(maxX, p.x);
-    maxY = std::max(maxY, p.y);
-  }
-  const double reach = std::hypot(maxX - minX, maxY - minY) + 1.0;
 
   // Transfer to the original: the piece of the perpendicular line inside the original parcel that is
   // nearest the sampled point (Q18). Plain code for hole-free parcels, GEOS otherwise.
@@ -336,6 +328,14 @@ SplitVerdict trySplit(SubdivisionParcel& parcel, const SplitRules& rules,
       return verdict;
     }
   }
+  double minX = 1e300, minY = 1e300, maxX = -1e300, maxY = -1e300;
+  for (const Vec2& p : parcel.polygon.outer) {
+    minX = std::min(minX, p.x);
+    minY = std::min(minY, p.y);
+    maxX = std::max(maxX, p.x);
+    maxY = std::max(maxY, p.y);
+  }
+  const double reach = std::hypot(maxX - minX, maxY - minY) + 1.0;
   GEOSContextHandle_t h = geos.handle();
   geos::GeomPtr polygon = geos.polygon(parcel.polygon);
   geos::GeomPtr line = geos.lineString({q - normal * reach, q + normal * reach});
