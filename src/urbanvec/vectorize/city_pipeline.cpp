@@ -237,6 +237,7 @@ CityResult vectorizeCity(const RoadNetwork& network, const Grid<std::uint8_t>& c
   const SimulatedCity city = simulatedCity(cells, blocks, simParcels);
   BlocksOptions blocksOptions = options.blocks;
   blocksOptions.road.threads = options.parcels.threads;  // one thread setting for every parallel stage
+  blocksOptions.water.threads = options.parcels.threads;
   result.blocks = vectorizeBlocks(network, city, grid, blocksOptions, subProgress(progress, 0.0, 0.35));
   releaseFreedMemory();  // the overlays of C-D5
 

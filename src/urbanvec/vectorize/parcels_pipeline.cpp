@@ -106,6 +106,13 @@ BlockParcels parcelBlock(const ParcelBlock& block, const ParcelsOptions& options
     if (simParcelArea > blockArea && simParcelArea > 0.0) rules.minArea *= blockArea / simParcelArea;
   }
   const UseModel model = buildUseModel(sim, options.landUse);
+  // Every try starts from the E1 parcels: simplify them and find their road-facing edges once, not
+  // once per try.
+  std::vector<SubdivisionParcel> initialParcels;
+  for (const Polygon& p : initial) {
+    initialParcels.emplace_back(p);
+    prepare(initialParcels.back(), options.regular, frontage, geos);
+  }
 
   struct Best {
     bool set = false;
@@ -121,8 +128,7 @@ BlockParcels parcelBlock(const ParcelBlock& block, const ParcelsOptions& options
 
   auto runTries = [&](const SplitRules& rules, int tries, int relaxed) {
     for (int attempt = 0; attempt < tries; ++attempt) {
-      std::vector<SubdivisionParcel> parcels;
-      for (const Polygon& p : initial) parcels.emplace_back(p);
+      std::vector<SubdivisionParcel> parcels = initialParcels;
       SplitStats stats;
       int target = std::max(simCount, static_cast<int>(parcels.size()));
       subdivide(parcels, target, rules, options.regular, frontage, geos, rng, stats);  // E2

@@ -125,6 +125,19 @@ double RoadFrontage::distance(const Vec2& p) const {
   return best;
 }
 
+bool RoadFrontage::within(const Vec2& p, double limit) const {
+  // The nearest point of a segment lies in its bounding box, so a box farther than the limit (plus a
+  // margin for the rounding of the projection) cannot hold a segment within it.
+  const double reach = limit + 1e-9;
+  for (const auto& s : segments_) {
+    if (p.x < std::min(s[0].x, s[1].x) - reach || p.x > std::max(s[0].x, s[1].x) + reach ||
+        p.y < std::min(s[0].y, s[1].y) - reach || p.y > std::max(s[0].y, s[1].y) + reach)
+      continue;
+    if (segmentDistance(p, s[0], s[1]) <= limit) return true;
+  }
+  return false;
+}
+
 SplitRules splitRules(const SimBlockSummary& sim, const RegularSubdivisionOptions& options) {
   SplitRules rules;
   double smallest = 0.0, residential = 0.0;
@@ -193,8 +206,6 @@ SplitVerdict checkSplit(const Polygon& parent, const Polygon& a, const Polygon& 
 
 SubdivisionParcel::SubdivisionParcel(Polygon p) : polygon(std::move(p)), area(urbanvec::area(polygon)) {}
 
-namespace {
-
 void prepare(SubdivisionParcel& parcel, const RegularSubdivisionOptions& options,
              const RoadFrontage& frontage, const geos::Context& geos) {
   parcel.prepared = true;
@@ -215,13 +226,15 @@ void prepare(SubdivisionParcel& parcel, const RegularSubdivisionOptions& options
       if (distance(a, b) <= 1e-9) continue;
       bool facing = true;
       for (double t : {0.25, 0.5, 0.75})
-        if (frontage.distance(a + (b - a) * t) > near) facing = false;
+        if (!frontage.within(a + (b - a) * t, near)) facing = false;
       if (facing) parcel.roadEdges.push_back({a, b});
     }
   };
   scanRing(simplified.outer);
   for (const Ring& h : simplified.holes) scanRing(h);
 }
+
+namespace {
 
 /// Splits a hole-free ring by the piece of the line q + s·dir that lies inside it nearest q. Returns
 /// false in degenerate cases (the line through a vertex or along an edge), which GEOS then handles.
@@ -304,14 +317,6 @@ SplitVerdict trySplit(SubdivisionParcel& parcel, const SplitRules& rules,
   const Vec2 q = a + (b - a) * t;
   const Vec2 along = (b - a) / distance(a, b);
   const Vec2 normal{-along.y, along.x};
-  double minX = 1e300, minY = 1e300, maxX = -1e300, maxY = -1e300;
-  for (const Vec2& p : parcel.polygon.outer) {
-    minX = std::min(minX, p.x);
-    minY = std::min(minY, p.y);
-    maxX = std::max(maxX, p.x);
-    maxY = std::max(maxY, p.y);
-  }
-  const double reach = std::hypot(maxX - minX, maxY - minY) + 1.0;
 
   // Transfer to the original: the piece of the perpendicular line inside the original parcel that is
   // nearest the sampled point (Q18). Plain code for hole-free parcels, GEOS otherwise.
@@ -323,6 +328,14 @@ SplitVerdict trySplit(SubdivisionParcel& parcel, const SplitRules& rules,
       return verdict;
     }
   }
+  double minX = 1e300, minY = 1e300, maxX = -1e300, maxY = -1e300;
+  for (const Vec2& p : parcel.polygon.outer) {
+    minX = std::min(minX, p.x);
+    minY = std::min(minY, p.y);
+    maxX = std::max(maxX, p.x);
+    maxY = std::max(maxY, p.y);
+  }
+  const double reach = std::hypot(maxX - minX, maxY - minY) + 1.0;
   GEOSContextHandle_t h = geos.handle();
   geos::GeomPtr polygon = geos.polygon(parcel.polygon);
   geos::GeomPtr line = geos.lineString({q - normal * reach, q + normal * reach});

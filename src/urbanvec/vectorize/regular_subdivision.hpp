@@ -64,6 +64,9 @@ class RoadFrontage {
   double longestGeos(const Polygon& parcel) const;
   /// Distance from a point to the nearest road-facing line, cells (huge when there is none).
   double distance(const Vec2& p) const;
+  /// Whether distance(p) <= limit; skips segments whose bounding box is farther than the limit, so it
+  /// costs a distance only for the few segments near the point.
+  bool within(const Vec2& p, double limit) const;
   bool empty() const { return segments_.empty(); }
 
  private:
@@ -109,6 +112,11 @@ struct SplitStats {
   /// "no acceptable split (mostly <reason>)"
   std::string shortfallReason() const;
 };
+
+/// Computes the simplified copy's road-facing edges of `parcel` (trySplit does it on first use).
+/// Deterministic and free of randomness, so the tries of a block can share the work on its E1 parcels.
+void prepare(SubdivisionParcel& parcel, const RegularSubdivisionOptions& options,
+             const RoadFrontage& frontage, const geos::Context& geos);
 
 /// One random split attempt of `parcel`; on acceptance the two children are returned in `out`.
 SplitVerdict trySplit(SubdivisionParcel& parcel, const SplitRules& rules,

@@ -200,34 +200,56 @@ WaterSplit splitBlocksByWater(const std::vector<Polygon>& blocks, const std::vec
     waterRaw.push_back(waterGeoms.back().get());
   }
   GeometryIndex index(ctx, waterRaw);
-  WaterSplit out;
-  ProgressTicker ticker(progress, "water splitting", blocks.size());
+  // Which water polygons each block meets, on this thread (the index and `ctx` are not shared).
+  std::vector<geos::GeomPtr> blockGeoms(blocks.size());
+  std::vector<std::vector<int>> hitsOf(blocks.size());
   for (size_t b = 0; b < blocks.size(); ++b) {
-    geos::GeomPtr block = ctx.polygon(blocks[b]);
-    std::vector<geos::GeomPtr> hits;
-    for (int w : index.query(block.get()))
-      if (GEOSIntersects_r(ctx.handle(), waterGeoms[w].get(), block.get()) == 1)
-        hits.push_back(ctx.own(GEOSGeom_clone_r(ctx.handle(), waterGeoms[w].get()), "clone"));
-    if (hits.empty()) {
-      out.blocks.push_back({blocks[b], internal[b], -1});
-      ticker.tick();
-      continue;
-    }
-    ++out.blocksSplit;
-    geos::GeomPtr cut = unionOnGrid(ctx, std::move(hits), grid);
-    geos::GeomPtr rest =
-        ctx.own(GEOSDifferencePrec_r(ctx.handle(), block.get(), cut.get(), grid), "difference");
-    for (Polygon& piece : ctx.toPolygons(rest.get())) {
-      if (!(area(piece) >= grid)) continue;  // precision crumbs
-      orientClockwise(piece);
-      const CellTally tally = tallyCells(piece, blockOfCell, city.grid);
-      if (tally.majorityBlock() < 0) {
-        out.shoreScraps.push_back(std::move(piece));
-      } else {
-        out.blocks.push_back({std::move(piece), internal[b], tally.majorityBlock()});
-      }
-    }
-    ticker.tick();
+    blockGeoms[b] = ctx.polygon(blocks[b]);
+    for (int w : index.query(blockGeoms[b].get()))
+      if (GEOSIntersects_r(ctx.handle(), waterGeoms[w].get(), blockGeoms[b].get()) == 1)
+        hitsOf[b].push_back(w);
+  }
+  // The overlays of the blocks that meet water are independent: split them across threads, each block
+  // writing only its own slot, then gather the slots in block order so the output does not depend on
+  // the thread count.
+  struct Pieces {
+    std::vector<WaterSplitBlock> blocks;
+    MultiPolygon shoreScraps;
+  };
+  std::vector<Pieces> pieces(blocks.size());
+  const GeosWorkers workers(options.threads);
+  ProgressTicker ticker(progress, "water splitting", blocks.size());
+  workers.run(
+      blocks.size(),
+      [&](size_t b, size_t, const geos::Context& c) {
+        Pieces& slot = pieces[b];
+        if (hitsOf[b].empty()) {
+          slot.blocks.push_back({blocks[b], internal[b], -1});
+          return;
+        }
+        std::vector<geos::GeomPtr> hits;
+        for (int w : hitsOf[b])
+          hits.push_back(c.own(GEOSGeom_clone_r(c.handle(), waterGeoms[w].get()), "clone"));
+        geos::GeomPtr cut = unionOnGrid(c, std::move(hits), grid);
+        geos::GeomPtr rest =
+            c.own(GEOSDifferencePrec_r(c.handle(), blockGeoms[b].get(), cut.get(), grid), "difference");
+        for (Polygon& piece : c.toPolygons(rest.get())) {
+          if (!(area(piece) >= grid)) continue;  // precision crumbs
+          orientClockwise(piece);
+          const CellTally tally = tallyCells(piece, blockOfCell, city.grid);
+          if (tally.majorityBlock() < 0) {
+            slot.shoreScraps.push_back(std::move(piece));
+          } else {
+            slot.blocks.push_back({std::move(piece), internal[b], tally.majorityBlock()});
+          }
+        }
+      },
+      [&](size_t done) { ticker.tick(done); });
+  WaterSplit out;
+  for (size_t b = 0; b < blocks.size(); ++b) {
+    out.blocksSplit += !hitsOf[b].empty();
+    for (WaterSplitBlock& piece : pieces[b].blocks) out.blocks.push_back(std::move(piece));
+    for (Polygon& scrap : pieces[b].shoreScraps) out.shoreScraps.push_back(std::move(scrap));
   }
   ticker.finish();
   return out;

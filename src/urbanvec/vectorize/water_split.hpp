@@ -29,6 +29,8 @@ struct WaterSplitOptions {
   double resampleSpacing = 0.5;
   /// Overlay precision grid, in cells (see kDefaultPrecisionGrid).
   double precisionGrid = kDefaultPrecisionGrid;
+  /// Worker threads for the per-block splitting (0 = all cores); the result does not depend on it.
+  int threads = 0;
 };
 
 /// Simulated-block index (into SimulatedCity::blocks) of every cell, -1 where none.
