@@ -15,13 +15,6 @@ namespace {
 
 constexpr double kOvershoot = 1e-7;  ///< cut overshoot past the parcel boundary so noding closes it, cells
 
-double segmentDistance(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 ab = b - a;
-  const double len2 = dot(ab, ab);
-  const double t = len2 > 0.0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
-  return urbanvec::distance(p, a + ab * t);
-}
-
 double aspectOf(const Polygon& p) {
   return orientedBox(p).aspect();
 }
@@ -121,7 +114,7 @@ double RoadFrontage::longestGeos(const Polygon& parcel) const {
 
 double RoadFrontage::distance(const Vec2& p) const {
   double best = 1e300;
-  for (const auto& s : segments_) best = std::min(best, segmentDistance(p, s[0], s[1]));
+  for (const auto& s : segments_) best = std::min(best, distanceToSegment(p, s[0], s[1]));
   return best;
 }
 
@@ -133,7 +126,7 @@ bool RoadFrontage::within(const Vec2& p, double limit) const {
     if (p.x < std::min(s[0].x, s[1].x) - reach || p.x > std::max(s[0].x, s[1].x) + reach ||
         p.y < std::min(s[0].y, s[1].y) - reach || p.y > std::max(s[0].y, s[1].y) + reach)
       continue;
-    if (segmentDistance(p, s[0], s[1]) <= limit) return true;
+    if (distanceToSegment(p, s[0], s[1]) <= limit) return true;
   }
   return false;
 }
@@ -345,7 +338,7 @@ SplitVerdict trySplit(SubdivisionParcel& parcel, const SplitRules& rules,
   double best = 1e300;
   for (const LineString& piece : pieces) {
     for (size_t i = 0; i + 1 < piece.size(); ++i) {
-      const double d = segmentDistance(q, piece[i], piece[i + 1]);
+      const double d = distanceToSegment(q, piece[i], piece[i + 1]);
       if (d < best) {
         best = d;
         chord = &piece;
