@@ -235,33 +235,31 @@ def main():
                 names.append(name)
     if names:
         shown = [g for g in order if stages[g]]
-        out.append("### vectorize per stage: wall s (CPU use, 100% = one core busy)")
-        out.append("")
-        out.append("| stage | " + " | ".join(grid_label(g, rows[g][VECTORIZE]["cells"]) for g in shown) + " |")
-        out.append("|---|" + "---|" * len(shown))
-        for name in names:
-            line = [name]
-            for g in shown:
-                hit = [(w, c) for n, w, c, _, _ in stages[g] if n == name]
-                if not hit:
-                    line.append("-")
-                    continue
-                w, c = hit[0]
-                line.append("%s (%s)" % (fmt(w), "%d%%" % round(100 * c / w) if w >= 0.05 else "-"))
-            out.append("| " + " | ".join(line) + " |")
-        out.append("")
-        if any(p for g in shown for _, _, _, p, _ in stages[g]):
-            out.append("### vectorize memory per stage: resident MB at the end of the stage (peak so far)")
+
+        def stage_table(title, cell):
+            """One row per stage, one column per grid; cell(entries of that stage) -> text."""
+            out.append(title)
             out.append("")
             out.append("| stage | " + " | ".join(grid_label(g, rows[g][VECTORIZE]["cells"]) for g in shown) + " |")
             out.append("|---|" + "---|" * len(shown))
             for name in names:
-                line = [name]
-                for g in shown:
-                    hit = [(p, r) for n, _, _, p, r in stages[g] if n == name]
-                    line.append("%.0f (%.0f)" % (hit[0][1] / 1024, hit[0][0] / 1024) if hit and hit[0][0] else "-")
-                out.append("| " + " | ".join(line) + " |")
+                out.append("| " + " | ".join([name] + [cell([st for st in stages[g] if st[0] == name])
+                                                         for g in shown]) + " |")
             out.append("")
+
+        def wall_cell(hit):
+            if not hit:
+                return "-"
+            _, w, c, _, _ = hit[0]
+            return "%s (%s)" % (fmt(w), "%d%%" % round(100 * c / w) if w >= 0.05 else "-")
+
+        def memory_cell(hit):
+            return "%.0f (%.0f)" % (hit[0][4] / 1024, hit[0][3] / 1024) if hit and hit[0][3] else "-"
+
+        stage_table("### vectorize per stage: wall s (CPU use, 100% = one core busy)", wall_cell)
+        if any(p for g in shown for _, _, _, p, _ in stages[g]):
+            stage_table("### vectorize memory per stage: resident MB at the end of the stage (peak so far)",
+                        memory_cell)
 
     # 5. Targets, on the largest grid.
     if mirrored:
