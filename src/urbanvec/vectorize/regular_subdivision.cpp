@@ -332,32 +332,60 @@ void prepare(SubdivisionParcel& parcel, const RegularSubdivisionOptions& options
 
 namespace {
 
-/// Splits a hole-free ring by the piece of the line q + s·dir that lies inside it nearest q. Returns
-/// false in degenerate cases (the line through a vertex or along an edge), which GEOS then handles.
-bool splitRingByLine(const Ring& ring, const Vec2& q, const Vec2& dir, std::array<Polygon, 2>& out) {
-  const size_t n = ring.size() - 1;
+/// Whether p lies inside the closed ring (crossing number; a point on the ring may go either way).
+bool insideRing(const Vec2& p, const Ring& ring) {
+  bool inside = false;
+  for (size_t i = 0; i + 1 < ring.size(); ++i) {
+    const Vec2& a = ring[i];
+    const Vec2& b = ring[i + 1];
+    if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x)) inside = !inside;
+  }
+  return inside;
+}
+
+enum class LineSplit {
+  Split,       ///< two children in `out`
+  NoSplit,     ///< the piece joins two different rings, so cutting along it leaves one piece
+  Degenerate,  ///< left to GEOS
+};
+
+/// Splits a polygon by the piece of the line q + s·dir that lies inside it nearest q, when that piece
+/// runs from the outer ring to the outer ring; each hole goes to the side that contains it. Degenerate
+/// cases are left to GEOS: the line through a vertex or along an edge of any ring, the piece running
+/// from a hole back to the same hole (that cuts off a pocket), or a hole whose side is unclear because
+/// it touches the outer ring.
+LineSplit splitPolygonByLine(const Polygon& polygon, const Vec2& q, const Vec2& dir,
+                             std::array<Polygon, 2>& out) {
   struct Crossing {
     double s;
+    size_t ring;  ///< 0 for the outer ring, h + 1 for hole h
     size_t edge;
     Vec2 point;
   };
   std::vector<Crossing> crossings;
-  for (size_t i = 0; i < n; ++i) {
-    const Vec2 p0 = ring[i], e = ring[i + 1] - ring[i];
-    const double denom = cross(dir, e);
-    const double scale = length(e);
-    if (scale <= 0.0) continue;
-    if (std::fabs(denom) <= 1e-12 * scale) {
-      if (std::fabs(cross(p0 - q, dir)) <= 1e-9) return false;  // along the edge
-      continue;
+  auto addCrossings = [&](const Ring& ring, size_t ringIndex) {
+    for (size_t i = 0; i + 1 < ring.size(); ++i) {
+      const Vec2 p0 = ring[i], e = ring[i + 1] - ring[i];
+      const double denom = cross(dir, e);
+      const double scale = length(e);
+      if (scale <= 0.0) continue;
+      if (std::fabs(denom) <= 1e-12 * scale) {
+        if (std::fabs(cross(p0 - q, dir)) <= 1e-9) return false;  // along the edge
+        continue;
+      }
+      const double u = cross(p0 - q, dir) / denom;
+      if (u < -1e-12 || u > 1.0 + 1e-12) continue;
+      if (u < 1e-9 || u > 1.0 - 1e-9) return false;  // through a vertex
+      const double s = cross(p0 - q, e) / denom;
+      crossings.push_back({s, ringIndex, i, p0 + e * u});
     }
-    const double u = cross(p0 - q, dir) / denom;
-    if (u < -1e-12 || u > 1.0 + 1e-12) continue;
-    if (u < 1e-9 || u > 1.0 - 1e-9) return false;  // through a vertex
-    const double s = cross(p0 - q, e) / denom;
-    crossings.push_back({s, i, p0 + e * u});
-  }
-  if (crossings.size() < 2 || crossings.size() % 2 != 0) return false;
+    return true;
+  };
+  if (!addCrossings(polygon.outer, 0)) return LineSplit::Degenerate;
+  for (size_t h = 0; h < polygon.holes.size(); ++h)
+    if (!addCrossings(polygon.holes[h], h + 1)) return LineSplit::Degenerate;
+  // Inside the polygon the line runs between crossings 0-1, 2-3, ... of all rings in order along it.
+  if (crossings.size() < 2 || crossings.size() % 2 != 0) return LineSplit::Degenerate;
   std::sort(crossings.begin(), crossings.end(),
             [](const Crossing& a, const Crossing& b) { return a.s < b.s; });
   size_t pick = 0;
@@ -370,9 +398,13 @@ bool splitRingByLine(const Ring& ring, const Vec2& q, const Vec2& dir, std::arra
       pick = k;
     }
   }
-  if (crossings[pick + 1].s - crossings[pick].s <= 1e-9) return false;
+  if (crossings[pick + 1].s - crossings[pick].s <= 1e-9) return LineSplit::Degenerate;
   const Crossing& a = crossings[pick];
   const Crossing& b = crossings[pick + 1];
+  if (a.ring != b.ring) return LineSplit::NoSplit;
+  if (a.ring != 0) return LineSplit::Degenerate;
+  const Ring& ring = polygon.outer;
+  const size_t n = ring.size() - 1;
   auto walk = [&](const Crossing& from, const Crossing& to) {
     Ring r{from.point};
     for (size_t i = (from.edge + 1) % n;; i = (i + 1) % n) {
@@ -385,7 +417,14 @@ bool splitRingByLine(const Ring& ring, const Vec2& q, const Vec2& dir, std::arra
   };
   out[0] = Polygon{walk(a, b), {}};
   out[1] = Polygon{walk(b, a), {}};
-  return true;
+  // The chord meets no hole, so each hole lies wholly on one side. A valid hole touches the outer ring
+  // in at most one point, so two of its vertices agree on the side unless one lies on that point.
+  for (const Ring& hole : polygon.holes) {
+    const bool first = insideRing(hole[0], out[0].outer), second = insideRing(hole[1], out[0].outer);
+    if (first != second) return LineSplit::Degenerate;
+    out[first ? 0 : 1].holes.push_back(hole);
+  }
+  return LineSplit::Split;
 }
 
 }  // namespace
@@ -415,10 +454,12 @@ SplitVerdict trySplit(SubdivisionParcel& parcel, const SplitRules& rules,
   const Vec2 normal{-along.y, along.x};
 
   // Transfer to the original: the piece of the perpendicular line inside the original parcel that is
-  // nearest the sampled point (Q18). Plain code for hole-free parcels, GEOS otherwise.
-  if (parcel.polygon.holes.empty() && parcel.polygon.outer.size() >= 4) {
+  // nearest the sampled point (Q18). Plain code, GEOS in the degenerate cases.
+  if (parcel.polygon.outer.size() >= 4) {
     std::array<Polygon, 2> children;
-    if (splitRingByLine(parcel.polygon.outer, q, normal, children)) {
+    const LineSplit split = splitPolygonByLine(parcel.polygon, q, normal, children);
+    if (split == LineSplit::NoSplit) return SplitVerdict::BadGeometry;
+    if (split == LineSplit::Split) {
       const SplitVerdict verdict =
           checkSplit(parcel.area, parcel.aspect, children[0], children[1], rules, frontage);
       if (verdict == SplitVerdict::Accepted) out = std::move(children);
