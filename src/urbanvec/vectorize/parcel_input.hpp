@@ -103,8 +103,22 @@ inline PolygonMoments polygonMoments(const Polygon& polygon) {
 /// ring projected on both axes (spec D1; §11.4 check 28).
 inline OrientedBox orientedBox(const Polygon& polygon) {
   const PolygonMoments m = polygonMoments(polygon);
-  const double angle = 0.5 * std::atan2(2.0 * m.sxy, m.sxx - m.syy);
-  const Vec2 u{std::cos(angle), std::sin(angle)};
+  // The principal axis is at angle θ with (cos 2θ, sin 2θ) ∝ (sxx - syy, 2 sxy); the half-angle
+  // formulas give cos θ and sin θ (θ in (-π/2, π/2], as 0.5·atan2 gives) without atan2/cos/sin, since
+  // the split loop of E2 calls this for every child of every try. The larger of the two halves is
+  // taken from its square root and the other from sin 2θ = 2 sin θ cos θ, which keeps full precision.
+  const double cos2 = m.sxx - m.syy, sin2 = 2.0 * m.sxy;
+  const double radius = std::sqrt(cos2 * cos2 + sin2 * sin2);
+  Vec2 u{1.0, 0.0};
+  if (radius > 0.0) {
+    if (cos2 >= 0.0) {
+      u.x = std::sqrt(0.5 * (1.0 + cos2 / radius));
+      u.y = sin2 / (2.0 * radius * u.x);
+    } else {
+      u.y = std::copysign(std::sqrt(0.5 * (1.0 - cos2 / radius)), sin2);
+      u.x = sin2 / (2.0 * radius * u.y);
+    }
+  }
   const Vec2 v{-u.y, u.x};
   double minU = 1e300, maxU = -1e300, minV = 1e300, maxV = -1e300;
   for (const Vec2& p : polygon.outer) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,8 @@ struct RegularSubdivisionOptions {
 };
 
 /// Road access of parcels: the block's road-facing lines (spec Q17) and the band around them.
+/// longest() and within() reuse scratch buffers, so one object serves one thread (each block builds
+/// its own).
 class RoadFrontage {
  public:
   RoadFrontage(const geos::Context& geos, const MultiLineString& roadFacing, double tolerance);
@@ -71,10 +74,29 @@ class RoadFrontage {
 
  private:
   double longestOnRing(const Ring& ring) const;
+  /// Collects into candidates_ each segment registered in a grid cell that the edge a-b, widened by
+  /// `margin`, passes through; a segment appears once.
+  void segmentsAlong(const Vec2& a, const Vec2& b, double margin) const;
+  void buildGrid();
   const geos::Context& geos_;
   double tolerance_;
   geos::GeomPtr band_;
   std::vector<std::array<Vec2, 2>> segments_;
+  // Uniform bucket grid over the segments' bounding boxes (cell lists stored contiguously), so a
+  // query visits only the segments near a parcel edge instead of all the block's curb segments.
+  Vec2 gridOrigin_;
+  double cellSize_ = 1.0;
+  int columns_ = 0, rows_ = 0;
+  std::vector<std::uint32_t> cellStart_;     ///< columns_ * rows_ + 1 offsets into cellSegments_
+  std::vector<std::uint32_t> cellSegments_;  ///< segment indices, grouped by cell
+  // Scratch reused across calls.
+  mutable std::vector<std::uint32_t> candidates_;
+  mutable std::vector<std::uint32_t> lastSeen_;  ///< per segment, the query that last collected it
+  mutable std::uint32_t query_ = 0;
+  mutable std::vector<std::pair<double, double>> edgeCover_;
+  mutable std::vector<std::pair<double, double>> cover_;  ///< merged intervals of all edges of a ring
+  mutable std::vector<std::uint32_t> coverStart_;         ///< per edge, its first interval in cover_
+  mutable std::vector<double> edgeLength_;
 };
 
 /// The four constraints, with the block's numbers filled in.
@@ -95,12 +117,17 @@ std::string_view verdictName(SplitVerdict verdict);
 /// residential variation, then road access, the costliest, last).
 SplitVerdict checkSplit(const Polygon& parent, const Polygon& a, const Polygon& b, const SplitRules& rules,
                         const RoadFrontage& frontage);
+/// The same with the parent's area and PCA aspect already known (the split loop keeps them per parcel
+/// instead of recomputing them on every try).
+SplitVerdict checkSplit(double parentArea, double parentAspect, const Polygon& a, const Polygon& b,
+                        const SplitRules& rules, const RoadFrontage& frontage);
 
 /// A parcel during subdivision, with its simplified copy and road-facing edges computed on first use.
 struct SubdivisionParcel {
   Polygon polygon;
   double area = 0.0;
   bool prepared = false;
+  double aspect = 1.0;                         ///< PCA aspect of `polygon`, set by prepare()
   std::vector<std::array<Vec2, 2>> roadEdges;  ///< road-facing edges of the simplified copy
   explicit SubdivisionParcel(Polygon p);
 };
@@ -113,7 +140,8 @@ struct SplitStats {
   std::string shortfallReason() const;
 };
 
-/// Computes the simplified copy's road-facing edges of `parcel` (trySplit does it on first use).
+/// Computes the aspect and the simplified copy's road-facing edges of `parcel` (trySplit does it on
+/// first use).
 /// Deterministic and free of randomness, so the tries of a block can share the work on its E1 parcels.
 void prepare(SubdivisionParcel& parcel, const RegularSubdivisionOptions& options,
              const RoadFrontage& frontage, const geos::Context& geos);

@@ -112,6 +112,29 @@ TEST(RegularSubdivision, RandomSplitsTileTheParcelAndRespectConstraints) {
   EXPECT_NEAR(total, 60.0, 1e-9);
 }
 
+TEST(RegularSubdivision, ParcelsWithAHoleSplitAroundIt) {
+  geos::Context geos;
+  Polygon block = box(0, 0, 10, 6);
+  block.holes.push_back(box(6, 2, 8, 4).outer);  // a courtyard
+  RoadFrontage road(geos, {box(0, 0, 10, 6).outer}, 1e-4);
+  SplitRules rules = looseRules();
+  rules.minArea = 4.0;
+  RegularSubdivisionOptions options;
+  Rng rng(5);
+  std::vector<SubdivisionParcel> parcels{SubdivisionParcel(block)};
+  SplitStats stats;
+  ASSERT_TRUE(subdivide(parcels, 4, rules, options, road, geos, rng, stats));
+  double total = 0.0;
+  size_t holes = 0;
+  for (const auto& p : parcels) {
+    total += p.area;
+    holes += p.polygon.holes.size();
+    EXPECT_EQ(GEOSisValid_r(geos.handle(), geos.polygon(p.polygon).get()), 1);
+  }
+  EXPECT_NEAR(total, 56.0, 1e-9);
+  EXPECT_EQ(holes, 1u);  // the courtyard went, whole, to one child
+}
+
 TEST(SpineSubdivision, SpineWithTwoEndsHalvesARectangle) {
   geos::Context geos;
   const Polygon block = box(0, 0, 12, 4);
