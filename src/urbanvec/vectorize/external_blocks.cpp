@@ -65,21 +65,25 @@ ExternalBlocks buildExternalBlocks(const RoadNetwork& network, const MultiPolygo
   geos::GeomPtr city_ = ctx.multiPolygon(perimeter);
   const bool hasPerimeter = !perimeter.empty();
   geos::GeomPtr ring = ctx.own(GEOSBoundary_r(ctx.handle(), city_.get()), "boundary");
-  const GEOSPreparedGeometry* prepared = GEOSPrepare_r(ctx.handle(), city_.get());
-  if (!prepared) throw internalError("GEOS failed to prepare the road perimeter: " + ctx.lastError());
+  // Prepared (indexed) geometries: a city's perimeter has as many vertices as its boundary lines have
+  // points, so plain GEOS distance and overlay calls per point or per line would grow quadratically.
   struct PreparedGuard {
     GEOSContextHandle_t h;
     const GEOSPreparedGeometry* p;
     ~PreparedGuard() { GEOSPreparedGeom_destroy_r(h, p); }
-  } guard{ctx.handle(), prepared};
+  };
+  const GEOSPreparedGeometry* prepared = GEOSPrepare_r(ctx.handle(), city_.get());
+  if (!prepared) throw internalError("GEOS failed to prepare the road perimeter: " + ctx.lastError());
+  PreparedGuard guard{ctx.handle(), prepared};
+  const GEOSPreparedGeometry* preparedRing = GEOSPrepare_r(ctx.handle(), ring.get());
+  if (!preparedRing) throw internalError("GEOS failed to prepare the road perimeter: " + ctx.lastError());
+  PreparedGuard ringGuard{ctx.handle(), preparedRing};
 
   auto insidePerimeter = [&](const Vec2& p) {
     if (!hasPerimeter) return false;
     geos::GeomPtr pt = ctx.point(p);
     if (GEOSPreparedContains_r(ctx.handle(), prepared, pt.get()) != 1) return false;
-    double d = 0.0;
-    GEOSDistance_r(ctx.handle(), ring.get(), pt.get(), &d);
-    return d > options.insideTolerance;
+    return GEOSPreparedDistanceWithin_r(ctx.handle(), preparedRing, pt.get(), options.insideTolerance) != 1;
   };
 
   std::vector<int> perimeterLinesAtNode(network.nodes.size(), 0);
@@ -103,12 +107,11 @@ ExternalBlocks buildExternalBlocks(const RoadNetwork& network, const MultiPolygo
       ++out.deletedLines;
       continue;
     }
+    // The part of the line inside the road perimeter is not cut away here (an overlay with the whole
+    // perimeter per line): it only bounds faces inside the perimeter, which are dropped below.
     geos::GeomPtr line = ctx.lineString(
         smoothBoundaryLine(seg.points, options.boundarySmoothingPasses, options.boundaryResampleSpacing));
-    if (hasPerimeter)
-      line = ctx.own(GEOSDifferencePrec_r(ctx.handle(), line.get(), city_.get(), grid), "difference");
-    else
-      line = ctx.own(GEOSGeom_setPrecision_r(ctx.handle(), line.get(), grid, 0), "set precision");
+    line = ctx.own(GEOSGeom_setPrecision_r(ctx.handle(), line.get(), grid, 0), "set precision");
     linework.push_back(std::move(line));
     // A line end left in the open is reconnected to the nearest point of the road perimeter (D4 step 1),
     // unless another boundary line continues from it.
@@ -121,7 +124,7 @@ ExternalBlocks buildExternalBlocks(const RoadNetwork& network, const MultiPolygo
           node >= 0 && static_cast<size_t>(node) < network.nodes.size() && perimeterLinesAtNode[node] > 1;
       if (continued || inside[e == 0 ? 0 : inside.size() - 1]) continue;
       geos::GeomPtr pt = ctx.point(p);
-      GEOSCoordSequence* nearest = GEOSNearestPoints_r(ctx.handle(), ring.get(), pt.get());
+      GEOSCoordSequence* nearest = GEOSPreparedNearestPoints_r(ctx.handle(), preparedRing, pt.get());
       if (!nearest) continue;
       Vec2 q;
       GEOSCoordSeq_getXY_r(ctx.handle(), nearest, 0, &q.x, &q.y);
