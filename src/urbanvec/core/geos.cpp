@@ -107,4 +107,20 @@ MultiLineString Context::toLines(const GEOSGeometry* g) const {
   return out;
 }
 
+PreparedGeometries::PreparedGeometries(const Context& context, std::vector<const GEOSGeometry*> geometries)
+    : context_(context), geometries_(std::move(geometries)), prepared_(geometries_.size(), nullptr) {}
+
+PreparedGeometries::~PreparedGeometries() {
+  for (const GEOSPreparedGeometry* p : prepared_)
+    if (p) GEOSPreparedGeom_destroy_r(context_.handle(), p);
+}
+
+const GEOSPreparedGeometry* PreparedGeometries::operator[](std::size_t i) {
+  if (!prepared_[i]) {
+    prepared_[i] = GEOSPrepare_r(context_.handle(), geometries_[i]);
+    if (!prepared_[i]) throw internalError("GEOS failed to prepare a geometry: " + context_.lastError());
+  }
+  return prepared_[i];
+}
+
 }  // namespace urbanvec::geos

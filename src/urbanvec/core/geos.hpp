@@ -57,4 +57,22 @@ class Context {
   std::string lastError_;
 };
 
+/// Prepared (indexed) forms of geometries that the caller keeps alive, made on first use: repeated
+/// predicates and distances against a large geometry then cost O(log n) instead of O(n). Not thread
+/// safe; one per context.
+class PreparedGeometries {
+ public:
+  PreparedGeometries(const Context& context, std::vector<const GEOSGeometry*> geometries);
+  ~PreparedGeometries();
+  PreparedGeometries(const PreparedGeometries&) = delete;
+  PreparedGeometries& operator=(const PreparedGeometries&) = delete;
+  /// The prepared form of geometry i; throws urbanvec::Error (Internal) when GEOS cannot prepare it.
+  const GEOSPreparedGeometry* operator[](std::size_t i);
+
+ private:
+  const Context& context_;
+  std::vector<const GEOSGeometry*> geometries_;
+  std::vector<const GEOSPreparedGeometry*> prepared_;
+};
+
 }  // namespace urbanvec::geos

@@ -44,20 +44,11 @@ BlockMatching matchSimulatedBlocks(const std::vector<Polygon>& vectorBlocks, con
                          const_cast<GEOSGeometry*>(centroidRaw[k]));
     centroidIndex.emplace(centroidRaw[k], static_cast<int>(k));
   }
-  std::vector<const GEOSPreparedGeometry*> prepared(geoms.size(), nullptr);
-  struct PreparedSet {
-    GEOSContextHandle_t h;
-    std::vector<const GEOSPreparedGeometry*>& list;
-    ~PreparedSet() {
-      for (const GEOSPreparedGeometry* p : list)
-        if (p) GEOSPreparedGeom_destroy_r(h, p);
-    }
-  } guard{ctx.handle(), prepared};
+  geos::PreparedGeometries prepared(ctx, raw);
 
   auto locate = [&](const Vec2& p) {
     geos::GeomPtr pt = ctx.point(p);
     for (int v : index.query(pt.get())) {
-      if (!prepared[v]) prepared[v] = GEOSPrepare_r(ctx.handle(), geoms[v].get());
       if (GEOSPreparedContains_r(ctx.handle(), prepared[v], pt.get()) == 1) return v;
     }
     return -1;

@@ -67,17 +67,9 @@ ExternalBlocks buildExternalBlocks(const RoadNetwork& network, const MultiPolygo
   geos::GeomPtr ring = ctx.own(GEOSBoundary_r(ctx.handle(), city_.get()), "boundary");
   // Prepared (indexed) geometries: a city's perimeter has as many vertices as its boundary lines have
   // points, so plain GEOS distance and overlay calls per point or per line would grow quadratically.
-  struct PreparedGuard {
-    GEOSContextHandle_t h;
-    const GEOSPreparedGeometry* p;
-    ~PreparedGuard() { GEOSPreparedGeom_destroy_r(h, p); }
-  };
-  const GEOSPreparedGeometry* prepared = GEOSPrepare_r(ctx.handle(), city_.get());
-  if (!prepared) throw internalError("GEOS failed to prepare the road perimeter: " + ctx.lastError());
-  PreparedGuard guard{ctx.handle(), prepared};
-  const GEOSPreparedGeometry* preparedRing = GEOSPrepare_r(ctx.handle(), ring.get());
-  if (!preparedRing) throw internalError("GEOS failed to prepare the road perimeter: " + ctx.lastError());
-  PreparedGuard ringGuard{ctx.handle(), preparedRing};
+  geos::PreparedGeometries preparedCity(ctx, {city_.get(), ring.get()});
+  const GEOSPreparedGeometry* prepared = preparedCity[0];
+  const GEOSPreparedGeometry* preparedRing = preparedCity[1];
 
   auto insidePerimeter = [&](const Vec2& p) {
     if (!hasPerimeter) return false;

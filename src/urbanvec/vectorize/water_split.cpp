@@ -203,28 +203,14 @@ WaterSplit splitBlocksByWater(const std::vector<Polygon>& blocks, const std::vec
   // Which water polygons each block meets, on this thread (the index, `ctx` and the prepared water are
   // not shared). A sea is one polygon with a vertex per shore cell that hundreds of blocks touch: the
   // prepared (indexed) test keeps that linear where a plain GEOSIntersects per pair is quadratic.
-  std::vector<const GEOSPreparedGeometry*> preparedWater(waterGeoms.size(), nullptr);
-  struct PreparedGuard {
-    GEOSContextHandle_t h;
-    std::vector<const GEOSPreparedGeometry*>& all;
-    ~PreparedGuard() {
-      for (const GEOSPreparedGeometry* p : all)
-        if (p) GEOSPreparedGeom_destroy_r(h, p);
-    }
-  } guard{ctx.handle(), preparedWater};
+  geos::PreparedGeometries preparedWater(ctx, waterRaw);
   std::vector<geos::GeomPtr> blockGeoms(blocks.size());
   std::vector<std::vector<int>> hitsOf(blocks.size());
   for (size_t b = 0; b < blocks.size(); ++b) {
     blockGeoms[b] = ctx.polygon(blocks[b]);
-    for (int w : index.query(blockGeoms[b].get())) {
-      if (!preparedWater[w]) {
-        preparedWater[w] = GEOSPrepare_r(ctx.handle(), waterGeoms[w].get());
-        if (!preparedWater[w])
-          throw internalError("GEOS failed to prepare a water polygon: " + ctx.lastError());
-      }
+    for (int w : index.query(blockGeoms[b].get()))
       if (GEOSPreparedIntersects_r(ctx.handle(), preparedWater[w], blockGeoms[b].get()) == 1)
         hitsOf[b].push_back(w);
-    }
   }
   // The overlays of the blocks that meet water are independent: split them across threads, each block
   // writing only its own slot, then gather the slots in block order so the output does not depend on
