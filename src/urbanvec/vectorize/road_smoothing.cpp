@@ -18,8 +18,6 @@ double smoothingShiftLimit(NodeType type, double reach) {
 }
 
 void averagePass(RoadGraph& graph, const std::vector<char>& movable, double reach) {
-  const double limit[] = {smoothingShiftLimit(NodeType::Primary, reach),
-                          smoothingShiftLimit(NodeType::Secondary, reach)};
   std::vector<Vec2> next(graph.nodes.size());
   for (size_t i = 0; i < graph.nodes.size(); ++i) {
     const RoadNode& n = graph.nodes[i];
@@ -33,7 +31,7 @@ void averagePass(RoadGraph& graph, const std::vector<char>& movable, double reac
         ++count;
       }
     next[i] = sum / count;
-    const double maxShift = limit[n.type == NodeType::Primary ? 0 : 1];
+    const double maxShift = smoothingShiftLimit(n.type, reach);
     const Vec2 shift = next[i] - n.placed;
     const double distance = length(shift);
     if (distance > maxShift) next[i] = n.placed + shift * (maxShift / distance);
