@@ -206,12 +206,6 @@ double RoadFrontage::longestGeos(const Polygon& parcel) const {
   return best;
 }
 
-double RoadFrontage::distance(const Vec2& p) const {
-  double best = 1e300;
-  for (const auto& s : segments_) best = std::min(best, distanceToSegment(p, s[0], s[1]));
-  return best;
-}
-
 bool RoadFrontage::within(const Vec2& p, double limit) const {
   if (segments_.empty()) return false;
   // The nearest point of a segment lies in its bounding box, so a box farther than the limit (plus a

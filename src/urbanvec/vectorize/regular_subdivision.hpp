@@ -65,10 +65,8 @@ class RoadFrontage {
   double longest(const Polygon& parcel) const;
   /// The same measure with GEOS (Intersection with a tolerance band + LineMerge), for the checkers.
   double longestGeos(const Polygon& parcel) const;
-  /// Distance from a point to the nearest road-facing line, cells (huge when there is none).
-  double distance(const Vec2& p) const;
-  /// Whether distance(p) <= limit; skips segments whose bounding box is farther than the limit, so it
-  /// costs a distance only for the few segments near the point.
+  /// Whether a road-facing line lies within `limit` (cells) of the point; skips segments whose bounding
+  /// box is farther than the limit, so it costs a distance only for the few segments near the point.
   bool within(const Vec2& p, double limit) const;
   bool empty() const { return segments_.empty(); }
 
