@@ -132,6 +132,37 @@ BlockMatching matchSimulatedBlocks(const std::vector<Polygon>& vectorBlocks, con
       }
       rule = MatchRule::CellCentre;
     }
+    if (v < 0 && options.matchByCellOverlap) {
+      // Every cell centre lies under pavement; the land still overlapping a vector block went there.
+      const size_t n = block.cells.size();
+      const size_t counted = std::min(n, static_cast<size_t>(std::max(1, options.maxCellsCounted)));
+      std::map<int, double> overlap;
+      for (size_t k = 0; k < counted; ++k) {
+        const GridCell cell = block.cells[k * n / counted];
+        const double x0 = cell.col, y0 = h - cell.row - 1.0;
+        geos::GeomPtr square =
+            ctx.polygon({{{x0, y0}, {x0 + 1, y0}, {x0 + 1, y0 + 1}, {x0, y0 + 1}, {x0, y0}}, {}});
+        for (int w : index.query(square.get())) {
+          geos::GeomPtr part =
+              ctx.own(GEOSIntersection_r(ctx.handle(), raw[w], square.get()), "intersection");
+          double area = 0.0;
+          GEOSArea_r(ctx.handle(), part.get(), &area);
+          if (area > 0.0) overlap[w] += area;
+        }
+      }
+      double best = options.minOverlapArea;
+      for (const auto& [w, area] : overlap)
+        if (area > best) v = w, best = area;
+      if (v >= 0) {
+        rule = MatchRule::CellOverlap;
+        ++out.overlapUses;
+      }
+    }
+    if (v < 0 && options.leaveBlocksUnderPavement && block.parcelIds.empty()) {
+      out.rule[bi] = MatchRule::UnderPavement;
+      ++out.underPavement;
+      continue;
+    }
     if (v < 0) {
       geos::GeomPtr pt = ctx.point(c);
       const GEOSGeometry* nearest = GEOSSTRtree_nearest_r(ctx.handle(), centroidTree, pt.get());

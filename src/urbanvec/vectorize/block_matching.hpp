@@ -3,7 +3,9 @@
 //   1. centre rule: if the block's centre lies in one of its own cells, the vector block containing it;
 //   2. parcel rule: otherwise the parcel centre closest to the block centre that lies in the block
 //      ([INFERENCE] then the block's own cell centres, nearest first);
-//   3. failsafe: the vector block whose centroid is closest to the block centre, counted.
+//   3. [INFERENCE] cell overlap: the vector block the block's cell squares overlap most;
+//   4. [INFERENCE] a block with no parcels that overlaps no vector block stays unmatched (under pavement);
+//   5. failsafe: the vector block whose centroid is closest to the block centre, counted.
 // [INFERENCE] A centre or parcel pick holding under half the block's cells gives way to the vector
 // block holding most of them (BlockMatchingOptions).
 // All coordinates are in the internal frame of spec §0 (cells).
@@ -25,7 +27,9 @@ enum class MatchRule : unsigned char {
   ParcelCentre,
   CellCentre,
   Failsafe,
-  Majority
+  Majority,
+  CellOverlap,
+  UnderPavement
 };
 
 struct BlockMatchingOptions {
@@ -38,6 +42,15 @@ struct BlockMatchingOptions {
   /// At most this many of a block's cells are located to count the shares (an even, deterministic
   /// sample of larger blocks), so the check stays linear in the grid.
   int maxCellsCounted = 400;
+  /// [INFERENCE, beyond the documents] Before the failsafe, a block whose cell centres all lie
+  /// under pavement goes to the vector block its cell squares overlap most, when that overlap
+  /// exceeds minOverlapArea (cells²): the land it kept went there. false = the documents' failsafe.
+  bool matchByCellOverlap = true;
+  double minOverlapArea = 0.01;
+  /// [INFERENCE, beyond the documents] A block with no parcels whose cells overlap no vector block
+  /// (a sliver between carriageways that the pavement covers) stays unmatched instead of taking the
+  /// failsafe: it has nothing to place, and its land is road now. false = the documents' failsafe.
+  bool leaveBlocksUnderPavement = true;
 };
 
 struct BlockMatching {
@@ -48,8 +61,11 @@ struct BlockMatching {
   /// Of the failsafe uses, simulated blocks listing at least one parcel (the others carry no parcels
   /// to place: unused land the roads and pavement took).
   int failsafeWithParcels = 0;
-  int majorityUses = 0;  ///< centre or parcel picks overruled by BlockMatchingOptions::minShareOfCells
-  /// Simulated blocks that were matched (all with at least one cell when any vector block exists).
+  int majorityUses = 0;   ///< centre or parcel picks overruled by BlockMatchingOptions::minShareOfCells
+  int overlapUses = 0;    ///< blocks matched by BlockMatchingOptions::matchByCellOverlap
+  int underPavement = 0;  ///< blocks left unmatched by BlockMatchingOptions::leaveBlocksUnderPavement
+  /// Simulated blocks that were matched (all with at least one cell when any vector block exists,
+  /// except those left under pavement).
   int matched = 0;
 };
 

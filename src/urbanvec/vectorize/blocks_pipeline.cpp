@@ -115,6 +115,8 @@ BlocksResult vectorizeBlocks(const RoadNetwork& network, const SimulatedCity& ci
   stats.failsafeUses = result.matching.failsafeUses;
   stats.failsafeWithParcels = result.matching.failsafeWithParcels;
   stats.majorityUses = result.matching.majorityUses;
+  stats.overlapUses = result.matching.overlapUses;
+  stats.underPavement = result.matching.underPavement;
   stats.matchedSimulatedBlocks = result.matching.matched;
 
   // Output layers and per-block data.

@@ -51,6 +51,8 @@ struct BlocksStats {
   int matchedSimulatedBlocks = 0;
   int failsafeUses = 0;          ///< D5 failsafe matches
   int failsafeWithParcels = 0;   ///< of those, simulated blocks listing parcels
+  int overlapUses = 0;           ///< D5 matches by cell overlap
+  int underPavement = 0;         ///< simulated blocks without parcels left under pavement
   int majorityUses = 0;          ///< D5 centre/parcel picks overruled by the cell majority
   int boundaryLines = 0;         ///< perimeter-class segments
   int deletedBoundaryLines = 0;  ///< removed by D3

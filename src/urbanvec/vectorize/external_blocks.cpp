@@ -15,10 +15,9 @@ namespace urbanvec::vectorize {
 
 namespace {
 
-/// Q8 smoothing of a boundary line: resample to `spacing`, then average every inner point with its
-/// two neighbours `passes` times; the end points (where the line meets the road) stay put.
-LineString smoothBoundaryLine(const LineString& line, int passes, double spacing) {
-  if (passes <= 0 || line.size() < 3) return line;
+/// The line with extra points so that no step is longer than `spacing`.
+LineString densified(const LineString& line, double spacing) {
+  if (line.size() < 2) return line;
   LineString dense;
   for (size_t i = 0; i + 1 < line.size(); ++i) {
     const int steps =
@@ -26,11 +25,34 @@ LineString smoothBoundaryLine(const LineString& line, int passes, double spacing
     for (int k = 0; k < steps; ++k) dense.push_back(line[i] + (line[i + 1] - line[i]) * (double(k) / steps));
   }
   dense.push_back(line.back());
+  return dense;
+}
+
+/// Q8 smoothing of a boundary line: resample to `spacing`, then average every inner point with its
+/// two neighbours `passes` times; the end points (where the line meets the road) stay put.
+LineString smoothBoundaryLine(const LineString& line, int passes, double spacing) {
+  if (passes <= 0 || line.size() < 3) return line;
+  LineString dense = densified(line, spacing);
   for (int pass = 0; pass < passes; ++pass) {
     LineString next = dense;
     for (size_t i = 1; i + 1 < dense.size(); ++i) next[i] = (dense[i - 1] + dense[i] + dense[i + 1]) / 3.0;
     dense = std::move(next);
   }
+  return dense;
+}
+
+/// Q8 smoothing of a closed ring (first point repeated at the end), every point averaged cyclically.
+Ring smoothClosedRing(const Ring& ring, int passes, double spacing) {
+  if (passes <= 0 || ring.size() < 4) return ring;
+  LineString dense = densified(ring, spacing);
+  dense.pop_back();
+  const size_t n = dense.size();
+  for (int pass = 0; pass < passes; ++pass) {
+    LineString next = dense;
+    for (size_t i = 0; i < n; ++i) next[i] = (dense[(i + n - 1) % n] + dense[i] + dense[(i + 1) % n]) / 3.0;
+    dense = std::move(next);
+  }
+  dense.push_back(dense.front());
   return dense;
 }
 
@@ -93,8 +115,10 @@ ExternalBlocks buildExternalBlocks(const RoadNetwork& network, const MultiPolygo
     ticker.tick();
     if (seg.roadClass != RoadClass::Perimeter || seg.points.size() < 2) continue;
     ++out.boundaryLines;
+    // The A4.8 line had a node at every cell corner; output simplification kept only its turns, so the
+    // D3 node share is taken over the line resampled at corner spacing.
     std::vector<bool> inside;
-    for (const Vec2& p : seg.points) inside.push_back(insidePerimeter(p));
+    for (const Vec2& p : densified(seg.points, 1.0)) inside.push_back(insidePerimeter(p));
     if (boundaryLineTrappedInside(inside, options.insideNodeShare)) {
       ++out.deletedLines;
       continue;
@@ -149,8 +173,58 @@ ExternalBlocks buildExternalBlocks(const RoadNetwork& network, const MultiPolygo
       ++out.droppedFaces;
     }
   }
+  if (options.islandBlocks) addIslandBlocks(ctx, city, blockOfCell, options, out);
   reportProgress(progress, 1.0, "external blocks");
   return out;
+}
+
+void addIslandBlocks(const geos::Context& ctx, const SimulatedCity& city, const Grid<int>& blockOfCell,
+                     const ExternalBlocksOptions& options, ExternalBlocks& out) {
+  const Grid<LandUse>& grid = city.grid;
+  const int h = grid.height;
+  auto undeveloped = [&](int c, int r) {
+    if (!grid.inside(c, r)) return true;
+    const LandUse u = grid.at(c, r);
+    return u == LandUse::Unused || u == LandUse::Water || u == LandUse::Reserved;
+  };
+  std::vector<bool> covered(city.blocks.size(), false);
+  for (const Polygon& block : out.blocks)
+    for (const auto& [b, cells] : tallyCells(block, blockOfCell, grid).blocks) covered[b] = true;
+  for (size_t b = 0; b < city.blocks.size(); ++b) {
+    const SimulatedBlock& block = city.blocks[b];
+    if (block.internal || covered[b] || block.cells.empty()) continue;
+    bool island = true;
+    // Its A4.8 edges close on themselves exactly when every 4-neighbour outside it is undeveloped.
+    const int dc[4] = {0, 1, 0, -1}, dr[4] = {-1, 0, 1, 0};
+    for (size_t k = 0; k < block.cells.size() && island; ++k)
+      for (int d = 0; d < 4 && island; ++d) {
+        const int c = block.cells[k].col + dc[d], r = block.cells[k].row + dr[d];
+        if (blockOfCell.inside(c, r) && blockOfCell.at(c, r) == static_cast<int>(b)) continue;
+        island = undeveloped(c, r);
+      }
+    if (!island) continue;
+    std::vector<geos::GeomPtr> squares;
+    for (const GridCell& cell : block.cells) {
+      const double x0 = cell.col, y0 = h - cell.row - 1.0;
+      squares.push_back(
+          ctx.polygon({{{x0, y0}, {x0 + 1, y0}, {x0 + 1, y0 + 1}, {x0, y0 + 1}, {x0, y0}}, {}}));
+    }
+    geos::GeomPtr cells = unionOnGrid(ctx, std::move(squares), options.precisionGrid);
+    for (const Polygon& part : ctx.toPolygons(cells.get())) {
+      Polygon smooth{
+          smoothClosedRing(part.outer, options.boundarySmoothingPasses, options.boundaryResampleSpacing), {}};
+      for (const Ring& hole : part.holes)
+        smooth.holes.push_back(
+            smoothClosedRing(hole, options.boundarySmoothingPasses, options.boundaryResampleSpacing));
+      geos::GeomPtr valid = ctx.own(GEOSMakeValid_r(ctx.handle(), ctx.polygon(smooth).get()), "make valid");
+      for (Polygon& piece : ctx.toPolygons(valid.get())) {
+        if (area(piece) <= 0.0) continue;
+        orientClockwise(piece);
+        out.blocks.push_back(std::move(piece));
+        ++out.islands;
+      }
+    }
+  }
 }
 
 }  // namespace urbanvec::vectorize

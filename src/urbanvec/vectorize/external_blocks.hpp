@@ -41,6 +41,11 @@ struct ExternalBlocksOptions {
   double boundaryResampleSpacing = 0.5;
   /// Overlay precision grid, in cells (see kDefaultPrecisionGrid).
   double precisionGrid = kDefaultPrecisionGrid;
+  /// [INFERENCE, beyond the documents] An external simulated block surrounded by undeveloped land
+  /// (a pier, an estate in the fields) meets no road, so A4.8 gives it only a closed loop and D4 no
+  /// face; its cell outline, smoothed like a boundary line, becomes its block. false = such blocks
+  /// go to the failsafe.
+  bool islandBlocks = true;
 };
 
 struct ExternalBlocks {
@@ -48,12 +53,18 @@ struct ExternalBlocks {
   int boundaryLines = 0;        ///< perimeter-class segments in the network
   int deletedLines = 0;         ///< removed by D3
   int droppedFaces = 0;         ///< faces outside the perimeter that were not external land
+  int islands = 0;              ///< island blocks (ExternalBlocksOptions::islandBlocks)
 };
 
 /// D3 + D4 on the perimeter-class segments of `network` and the road perimeter of D1.
 ExternalBlocks buildExternalBlocks(const RoadNetwork& network, const MultiPolygon& perimeter,
                                    const SimulatedCity& city, const Grid<int>& blockOfCell,
                                    const ExternalBlocksOptions& options, const Progress& progress = {});
+
+/// Adds to `out` a block for each external simulated block that touches only undeveloped land (unused,
+/// water, reserved, off-grid) and no block of `out` covers yet.
+void addIslandBlocks(const geos::Context& ctx, const SimulatedCity& city, const Grid<int>& blockOfCell,
+                     const ExternalBlocksOptions& options, ExternalBlocks& out);
 
 /// The D3 rule for one boundary line: both end points inside the perimeter AND more than
 /// `insideNodeShare` of its points inside. `inside` tells for each point whether it is inside.

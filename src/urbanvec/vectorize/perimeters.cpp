@@ -19,7 +19,8 @@ PerimeterStats addExternalPerimeters(RoadGraph& graph, const Grid<std::uint8_t>&
     if (!cells.inside(c, r)) return true;
     const std::uint8_t v = cells.at(c, r);
     return v == static_cast<std::uint8_t>(LandUse::Unused) ||
-           (options.waterIsUndeveloped && v == static_cast<std::uint8_t>(LandUse::Water));
+           (options.waterIsUndeveloped && v == static_cast<std::uint8_t>(LandUse::Water)) ||
+           (options.reservedIsUndeveloped && v == static_cast<std::uint8_t>(LandUse::Reserved));
   };
   auto external = [&](int c, int r) {
     if (!cells.inside(c, r)) return false;

@@ -130,8 +130,8 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
     if (s.closedLoops > 0)
       result.warnings.push_back(
           counts(s.closedLoops,
-                 " closed undeveloped boundaries inside external blocks meet no road and "
-                 "got no perimeter line"));
+                 " closed boundaries between undeveloped land and external blocks meet no road and "
+                 "got no perimeter line (islands become blocks of their own outline)"));
     return counts(s.lines, " perimeter lines, ", s.closedLoops, " closed loops skipped");
   });
   run("A5", "parcels", 0.03, false, [&](const Progress& p) {
@@ -211,7 +211,9 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
     for (const auto& b : result.city.parcels.blocks) parcelCount += b.parcels.size();
     report.summary = counts(result.city.blocks.blocks.features.size(), " blocks, ", parcelCount, " parcels, ",
                             result.city.blocks.stats.failsafeUses, " failsafe matches (",
-                            result.city.blocks.stats.failsafeWithParcels, " with parcels)");
+                            result.city.blocks.stats.failsafeWithParcels, " with parcels), ",
+                            result.city.blocks.stats.overlapUses, " by cell overlap, ",
+                            result.city.blocks.stats.underPavement, " left under pavement");
     result.stages.push_back(report);
     for (const Layer& l : result.city.layers) result.layers.push_back(l);
   }

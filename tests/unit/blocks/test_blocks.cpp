@@ -493,6 +493,53 @@ TEST(BlocksPipeline, ExternalBlockFromBoundaryLineAndTrappedLineDeleted) {
   EXPECT_TRUE(qualityFailures(c).empty()) << qualityFailures(c).front();
 }
 
+TEST(ExternalBlocks, StraightBoundaryLineBetweenTwoDeadEndsIsKeptAndAnIslandGetsItsBlock) {
+  // A secondary loop (x, y in [2.5, 9.5]) with two dead ends running east along y = 2.5 and y = 9.5
+  // to x = 15.5. Developed land between them (x in [10, 15], y in [3, 9]) is closed on the east by a
+  // straight boundary line from one dead end to the other: two points, both in the pavement of the
+  // culs-de-sac, the line between them in the open. A 2 x 2 commercial island stands in open land.
+  NetworkBuilder b;
+  b.chain({{2.5, 2.5}, {9.5, 2.5}, {9.5, 9.5}, {2.5, 9.5}, {2.5, 2.5}}, RoadClass::Secondary);
+  b.chain({{9.5, 2.5}, {12.5, 2.5}, {15.5, 2.5}}, RoadClass::Secondary);
+  b.chain({{9.5, 9.5}, {12.5, 9.5}, {15.5, 9.5}}, RoadClass::Secondary);
+  b.polyline({{15.5, 2.5}, {15.5, 9.5}}, RoadClass::Perimeter);
+  const TestCity t = makeCity(20, 12, [](int c, int r) {
+    const bool loop = (c == 2 || c == 9) && r >= 2 && r <= 9;
+    const bool rows = (r == 2 || r == 9) && c >= 2 && c <= 15;
+    if (loop || rows) return LandUse::SecondaryRoad;
+    if (c > 2 && c < 9 && r > 2 && r < 9) return LandUse::Residential;
+    if (c >= 10 && c <= 14 && r >= 3 && r <= 8) return LandUse::Commercial;
+    if (c >= 17 && c <= 18 && r >= 5 && r <= 6) return LandUse::Commercial;
+    return LandUse::Unused;
+  });
+  ASSERT_EQ(t.city.blocks.size(), 3u);
+  const RoadNetwork net = b.finish();
+  const BlocksResult r = vectorizeBlocks(net, t.city, t.spec);
+  EXPECT_EQ(r.stats.deletedBoundaryLines, 0);
+  const auto external = blocksOfKind(r, false);
+  ASSERT_EQ(external.size(), 2u);
+  // The block between the dead ends: 5.5 x 6 cells less the dead ends' culs-de-sac.
+  EXPECT_GT(external[0]->areaCells, 28.0);
+  EXPECT_LT(external[0]->areaCells, 33.0);
+  ASSERT_EQ(external[0]->simBlockIds.size(), 1u);
+  EXPECT_EQ(external[0]->simBlockIds[0], t.city.blocks[1].id);
+  // The island: its 2 x 2 cells with smoothed corners.
+  EXPECT_GT(external[1]->areaCells, 3.0);
+  EXPECT_LT(external[1]->areaCells, 4.0);
+  ASSERT_EQ(external[1]->simBlockIds.size(), 1u);
+  EXPECT_EQ(external[1]->simBlockIds[0], t.city.blocks[2].id);
+  EXPECT_EQ(r.stats.failsafeUses, 0);
+  const BlocksCheckReport c = check(r, t);
+  EXPECT_EQ(c.invalidPolygons, 0);
+  EXPECT_LE(c.blockPavementOverlapArea, 1e-6 * c.blockArea);
+  // Without island blocks the island's parcel goes to the failsafe.
+  BlocksOptions noIslands;
+  noIslands.external.islandBlocks = false;
+  const BlocksResult n = vectorizeBlocks(net, t.city, t.spec, noIslands);
+  EXPECT_EQ(blocksOfKind(n, false).size(), 1u);
+  EXPECT_EQ(n.stats.failsafeUses, 1);
+}
+
 TEST(ExternalBlocks, TrappedLineRuleNeedsBothEndsAndMoreThanHalf) {
   EXPECT_TRUE(boundaryLineTrappedInside({true, false, true, true, true}, 0.5));
   EXPECT_FALSE(boundaryLineTrappedInside({true, false, false, true}, 0.5));  // exactly 50%
@@ -727,6 +774,41 @@ TEST(BlockOutline, FacesBelowTheMinimumAreaGoBackToThePavement) {
   EXPECT_NEAR(unionArea(g.pieces), before + area(outline.slivers), 1e-6);
   EXPECT_NEAR(sum, unionArea(g.pieces), 1e-6);  // still no overlap
   EXPECT_TRUE(outlineBlocks(g.pieces, coarse).slivers.empty());
+}
+
+TEST(BlockMatching, BlocksUnderPavementGoByCellOverlapOrStayUnmatchedWithoutParcels) {
+  // Three one-cell simulated blocks on a 10 x 3 grid, none with its centre in a vector block: cell
+  // (1, 1) overlaps the vector block [0, 1.3] x [0, 3] by 0.3 cell; cells (5, 1) and (8, 1) overlap
+  // nothing, and only (8, 1) holds a parcel.
+  SimulatedCity city;
+  city.grid = Grid<LandUse>(10, 3, LandUse::Residential);
+  Grid<int> blockOfCell(10, 3, -1);
+  for (int col : {1, 5, 8}) {
+    SimulatedBlock block;
+    block.id = col;
+    block.cells = {{col, 1}};
+    block.centre = cellCentre({col, 1}, 3);
+    blockOfCell.at(col, 1) = static_cast<int>(city.blocks.size());
+    city.blocks.push_back(block);
+  }
+  city.blocks[2].parcelIds = {80};
+  city.parcels.push_back({80, LandUse::Residential, {{8, 1}}, cellCentre({8, 1}, 3)});
+  const std::vector<Polygon> vectorBlocks = {box(0, 0, 1.3, 3), box(6.2, 0, 6.8, 3)};
+  const BlockMatching m = matchSimulatedBlocks(vectorBlocks, city, blockOfCell, {});
+  EXPECT_EQ(m.vectorBlockOfSim[0], 0);
+  EXPECT_EQ(m.rule[0], MatchRule::CellOverlap);
+  EXPECT_EQ(m.vectorBlockOfSim[1], -1);
+  EXPECT_EQ(m.rule[1], MatchRule::UnderPavement);
+  EXPECT_EQ(m.vectorBlockOfSim[2], 1);  // nearest centroid
+  EXPECT_EQ(m.rule[2], MatchRule::Failsafe);
+  EXPECT_EQ(m.overlapUses, 1);
+  EXPECT_EQ(m.underPavement, 1);
+  EXPECT_EQ(m.failsafeUses, 1);
+  // The documents' rules send all three to the failsafe.
+  BlockMatchingOptions documentsOnly;
+  documentsOnly.matchByCellOverlap = false;
+  documentsOnly.leaveBlocksUnderPavement = false;
+  EXPECT_EQ(matchSimulatedBlocks(vectorBlocks, city, blockOfCell, {}, {}, documentsOnly).failsafeUses, 3);
 }
 
 TEST(BlockMatching, CentreInASliverGivesWayToTheBlockHoldingMostCells) {

@@ -125,6 +125,25 @@ TEST(Perimeters, LinesRunBetweenUndevelopedLandAndExternalBlocksAndEndAtRoads) {
   for (const RoadNode& n : g.nodes) EXPECT_EQ(n.type, NodeType::Perimeter);
 }
 
+TEST(Perimeters, ReservedLandAlongTheEdgeDoesNotCutTheLine) {
+  // The external block's edge to the open land passes reserved patches (x) halfway along: one line
+  // still runs from road to road, around the reserved patches, unless they count as developed.
+  auto cells = drawGrid({
+      "....xx...",
+      "rrrrrrrrr",
+      "rrrrrrrrr",
+      "sssssssss",
+  });
+  const RawBlocks rb = buildRawBlocks(cells, {});
+  RoadGraph g;
+  const PerimeterStats s = addExternalPerimeters(g, cells, rb.blockOf, rb.blocks, {});
+  EXPECT_EQ(s.lines, 1u);
+  RoadGraph split;
+  PerimeterOptions reservedDeveloped;
+  reservedDeveloped.reservedIsUndeveloped = false;
+  EXPECT_EQ(addExternalPerimeters(split, cells, rb.blockOf, rb.blocks, reservedDeveloped).lines, 2u);
+}
+
 TEST(ParcelLoading, ParcelsJoinTheBlockOfTheirFirstPatchAndTakeTableValues) {
   VectorizeInput in = drawInput({
       "sssss",
