@@ -140,7 +140,8 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
     if (pl.unattached > 0)
       result.warnings.push_back(counts(pl.unattached,
                                        " parcels have their first patch outside every block "
-                                       "(road, water or reserved) and are attached to no block"));
+                                       "(road, water, reserved, or open land beyond the external "
+                                       "blocks) and are attached to no block"));
     return counts(result.parcels.size(), " parcels, ", pl.unattached, " unattached, ", pl.derivedFromRaster,
                   " derived from the rasters");
   });
