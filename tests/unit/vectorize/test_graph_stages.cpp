@@ -447,3 +447,29 @@ TEST(Smoothing, BendsOfTwoWidePrimariesKeepTheirOuterCellsWithinOneAndAHalfCells
   smoothCurves(unlimited, curves);
   EXPECT_GT(farthestRoadCell(cells, unlimited), 1.5);
 }
+
+TEST(Connection, PrimaryStubJoinedByASecondaryRoadKeepsItsCells) {
+  // A 3-row primary stub hangs south of an east-west primary; a secondary road meets the stub from
+  // the west. The connection link makes the stub's nodes, its one-node dead end included ("linked
+  // only to other intersections"), one intersection cluster with the junction above.
+  std::vector<std::string> rows = blank(16, 12);
+  for (int c = 0; c < 16; ++c) rows[2][c] = rows[3][c] = 'P';
+  for (int r = 4; r <= 6; ++r) rows[r][7] = rows[r][8] = 'P';
+  for (int c = 0; c < 7; ++c) rows[5][c] = 's';
+  const Grid<std::uint8_t> cells = drawGrid(rows);
+  auto run = [&](double maxClusterRadius) {
+    Grid<std::uint8_t> work = cells;
+    RoadGraphOptions build;
+    build.maxClusterRadius = maxClusterRadius;
+    RoadGraph g = buildRoadGraph(work, build).graph;
+    RoadConnectionOptions connection;
+    connection.maxClusterRadius = maxClusterRadius;
+    connectRoads(g, connection);
+    EXPECT_EQ(componentCount(g), 1);
+    return farthestRoadCell(cells, g);
+  };
+  EXPECT_LE(run(RoadConnectionOptions{}.maxClusterRadius), 1.5);
+  // The documents' unbounded clusters put the stub and the junction at one mean: the stub's end
+  // patches are left about 2 cells from any road.
+  EXPECT_GT(run(0.0), 1.5);
+}
