@@ -311,6 +311,31 @@ TEST(IntersectionSimplification, SharpDeadEndsAndCloseNodesGo) {
   }
 }
 
+TEST(IntersectionSimplification, RoadEndMetByAPerimeterAtASharpAngleStays) {
+  // A primary road ends at `end`; the node before it, `i`, also carries an external block perimeter
+  // leaving 26 degrees from the road's last link.
+  auto graph = [] {
+    RoadGraph g;
+    const int w2 = g.addNode({-3, 0}, NodeType::Primary), w = g.addNode({-1.5, 0}, NodeType::Primary);
+    const int i = g.addNode({0, 0}, NodeType::Primary), end = g.addNode({1, 1.6}, NodeType::Primary);
+    const int p = g.addNode({2, 0.6}, NodeType::Perimeter), p2 = g.addNode({3.5, 0}, NodeType::Perimeter);
+    g.link(w2, w);
+    g.link(w, i);
+    g.link(i, end);
+    g.link(i, p);
+    g.link(p, p2);
+    return g;
+  };
+  RoadGraph g = graph();
+  EXPECT_EQ(simplifyIntersections(g, {}).deadEndsRemoved, 0u);
+  EXPECT_EQ(g.aliveCount(), 6u);
+  // The literal reading counts the perimeter as another road and cuts the road's end off.
+  RoadGraph literal = graph();
+  IntersectionSimplificationOptions allLinks;
+  allLinks.deadEndRoadsOnly = false;
+  EXPECT_EQ(simplifyIntersections(literal, allLinks).deadEndsRemoved, 1u);
+}
+
 TEST(CurveSmoothing, InsertsThreeTwoOneOrNoNodesPerSideByAngle) {
   const CurveSmoothingOptions defaults;
   EXPECT_EQ(defaults.passes, 8);
