@@ -5,6 +5,7 @@
 // removed.
 #include "urbanvec/vectorize/intersection_simplification.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace urbanvec::vectorize {
@@ -26,8 +27,14 @@ IntersectionSimplificationStats simplifyIntersections(RoadGraph& graph,
   // 1. Dead ends angled within deadEndAngle of another road.
   for (size_t i = 0; i < n; ++i) {
     if (!isRoad(graph.nodes[i])) continue;
+    // The links that count: all (the documents), or only those to road nodes.
+    auto counted = [&](int j) { return !options.deadEndRoadsOnly || isRoad(graph.nodes[j]); };
+    auto countedLinks = [&] {
+      const std::vector<std::int32_t>& links = graph.nodes[i].links;
+      return static_cast<size_t>(std::count_if(links.begin(), links.end(), counted));
+    };
     bool changed = true;
-    while (changed && graph.nodes[i].links.size() > 2) {
+    while (changed && countedLinks() > 2) {
       changed = false;
       const std::vector<std::int32_t> links = graph.nodes[i].links;
       for (int d : links) {
@@ -35,7 +42,7 @@ IntersectionSimplificationStats simplifyIntersections(RoadGraph& graph,
         if (dn.links.size() != 1 || dn.type == NodeType::Perimeter) continue;
         const Vec2 ud = dn.p - graph.nodes[i].p;
         for (int o : links) {
-          if (o == d) continue;
+          if (o == d || !counted(o)) continue;
           const Vec2 uo = graph.nodes[o].p - graph.nodes[i].p;
           const double ld = length(ud), lo = length(uo);
           if (ld == 0 || lo == 0 || dot(ud, uo) / (ld * lo) > cosLimit) {

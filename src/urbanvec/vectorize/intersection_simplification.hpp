@@ -12,6 +12,13 @@ struct IntersectionSimplificationOptions {
   /// A dead end next to an intersection is removed when its link makes a smaller angle than this with
   /// another link of the intersection, in degrees.
   double deadEndAngle = 90.0;
+  /// [INFERENCE, beyond the documents] The dead-end rule looks at road links only: a node is an
+  /// intersection for it with three or more links to road nodes, and the angle is measured against
+  /// other road links. The documents speak of dead ends "angled within 90 degrees of another road";
+  /// an external block perimeter joined at B3 is a block boundary, not a road. Counting it removed
+  /// the last node of a road whose end a perimeter line meets at a sharp angle, and the road's end
+  /// patches were left more than 1.5 cells from any road. false = all links (the literal reading).
+  bool deadEndRoadsOnly = true;
   /// Primary nodes closer than this to an intersection are contracted into it, in pw.
   double primaryDistance = 1.0;
   /// Secondary nodes closer than this to an intersection are contracted into it, in pw.

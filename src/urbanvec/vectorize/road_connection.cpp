@@ -92,7 +92,8 @@ RoadConnectionStats connectRoads(RoadGraph& graph, const RoadConnectionOptions& 
     }
   }
   reportProgress(progress, 0.4, "primary/secondary connection");
-  stats.clustersMerged = simplifyIntersectionClusters(graph, options.collapseTwoLinkClusters);
+  stats.clustersMerged =
+      simplifyIntersectionClusters(graph, options.collapseTwoLinkClusters, options.maxClusterRadius);
   reportProgress(progress, 0.6, "primary/secondary connection");
 
   // Perimeter ends to road nodes, each road node taking at most one perimeter.

@@ -23,6 +23,10 @@ struct RoadConnectionOptions {
   double maxPerimeterDistance = 3.0;
   /// As RoadGraphOptions::collapseTwoLinkClusters, for the clusters the merge creates.
   bool collapseTwoLinkClusters = true;
+  /// As RoadGraphOptions::maxClusterRadius, for the clusters the merge creates, in pw. Here the
+  /// merge's new links make most wide clusters: a connection node linked to a primary stub, or
+  /// secondary cells linked to two parallel primaries, join junctions several cells apart.
+  double maxClusterRadius = 1.0;
   /// As RoadGraphOptions::maxLinkLength, for the new links (A4.6 re-run), in pw.
   double maxLinkLength = 2.0;
 };

@@ -16,7 +16,8 @@ NodeType linkType(const RoadGraph& graph, int a, int b) {
   return NodeType::Secondary;
 }
 
-std::size_t simplifyIntersectionClusters(RoadGraph& graph, bool collapseTwoLinkClusters) {
+std::size_t simplifyIntersectionClusters(RoadGraph& graph, bool collapseTwoLinkClusters,
+                                         double maxClusterRadius) {
   updateIntersectionFlags(graph);
   const size_t n = graph.nodes.size();
   std::vector<char> seen(n, 0);
@@ -52,8 +53,15 @@ std::size_t simplifyIntersectionClusters(RoadGraph& graph, bool collapseTwoLinkC
     std::sort(outside.begin(), outside.end());
     outside.erase(std::unique(outside.begin(), outside.end()), outside.end());
     if (outside.size() == 2 && !collapseTwoLinkClusters) continue;
+    const Vec2 mean = sum / static_cast<double>(cluster.size());
+    // A cluster reaching farther than maxClusterRadius from its mean is several junctions joined by
+    // short roads; it keeps its nodes.
+    if (maxClusterRadius > 0.0 && std::any_of(cluster.begin(), cluster.end(), [&](int i) {
+          return distance(graph.nodes[i].p, mean) > maxClusterRadius;
+        }))
+      continue;
     const NodeType type = anyPrimary ? NodeType::Primary : graph.nodes[cluster.front()].type;
-    const int m = graph.addNode(sum / static_cast<double>(cluster.size()), type);
+    const int m = graph.addNode(mean, type);
     seen.push_back(1);
     graph.nodes[m].psConnection = anyConnection;
     for (int i : cluster) graph.removeNode(i);
@@ -184,7 +192,8 @@ RoadGraphBuild buildRoadGraph(Grid<std::uint8_t>& cells, const RoadGraphOptions&
   reportProgress(progress, 0.6, "road graph");
 
   // A4.4 intersections and clusters; A4.5 the graph is already an unconstrained adjacency list.
-  out.clustersMerged = simplifyIntersectionClusters(g, options.collapseTwoLinkClusters);
+  out.clustersMerged =
+      simplifyIntersectionClusters(g, options.collapseTwoLinkClusters, options.maxClusterRadius);
   reportProgress(progress, 0.8, "road graph");
   // A4.6 long links, A4.7 clockwise order.
   out.nodesInserted = subdivideLongLinks(g, options.maxLinkLength);

@@ -21,6 +21,16 @@ struct RoadGraphOptions {
   /// Collapse an intersection cluster with exactly two outside neighbours to a plain degree-2 node at
   /// its centroid (paper's "centroiding the loops"); false = leave it untouched (Q4).
   bool collapseTwoLinkClusters = true;
+  /// [INFERENCE, beyond the documents] An intersection cluster is replaced by its mean only when every
+  /// member lies within this distance of the mean, in pw; 0 = always (the documents). The documents'
+  /// clusters are rasterized junctions, a few patches across. But "linked only to other
+  /// intersections" also chains junctions a few cells apart through the short roads between them (a
+  /// primary stub between parallel primaries, a one-patch dead end), and their mean lies between the
+  /// roads: the stub vanishes and its patches end 2 cells or more from any road. A wider cluster keeps
+  /// its nodes; B4 removes the short cycles it holds and B5 contracts nodes within 1 pw. 1 pw keeps
+  /// every cluster of a 2x2 window or of two neighbouring nodes (Monaco: road cells farther than 1.5
+  /// cells from a road 31 -> 10).
+  double maxClusterRadius = 1.0;
   /// [INFERENCE, not in the documents] Also link primary nodes of diagonally adjacent patches when
   /// neither shared 4-neighbour has a node. A 2-wide diagonal (staircase) primary road has its 2x2
   /// node blocks touching only at corners, so pure 4-linking would cut it into isolated nodes.
@@ -48,9 +58,11 @@ RoadGraphBuild buildRoadGraph(Grid<std::uint8_t>& cells, const RoadGraphOptions&
                               const Progress& progress = {});
 
 /// A4.4: replaces every connected cluster of intersection nodes by one node at the cluster's mean
-/// position, inheriting all links to non-members. Returns the number of clusters merged. Also used
-/// after the primary/secondary connection (B3).
-std::size_t simplifyIntersectionClusters(RoadGraph& graph, bool collapseTwoLinkClusters);
+/// position, inheriting all links to non-members; a cluster with a member farther than
+/// maxClusterRadius (> 0) from the mean is left as it is. Returns the number of clusters merged. Also
+/// used after the primary/secondary connection (B3).
+std::size_t simplifyIntersectionClusters(RoadGraph& graph, bool collapseTwoLinkClusters,
+                                         double maxClusterRadius = 0.0);
 
 /// A4.6: splits every link of length >= maxLinkLength into k = floor(L / max) + 1 equal parts
 /// ([INFERENCE] split rule of the spec), inserted nodes taking the link's type. Returns nodes added.

@@ -311,6 +311,31 @@ TEST(IntersectionSimplification, SharpDeadEndsAndCloseNodesGo) {
   }
 }
 
+TEST(IntersectionSimplification, RoadEndMetByAPerimeterAtASharpAngleStays) {
+  // A primary road ends at `end`; the node before it, `i`, also carries an external block perimeter
+  // leaving 26 degrees from the road's last link.
+  auto graph = [] {
+    RoadGraph g;
+    const int w2 = g.addNode({-3, 0}, NodeType::Primary), w = g.addNode({-1.5, 0}, NodeType::Primary);
+    const int i = g.addNode({0, 0}, NodeType::Primary), end = g.addNode({1, 1.6}, NodeType::Primary);
+    const int p = g.addNode({2, 0.6}, NodeType::Perimeter), p2 = g.addNode({3.5, 0}, NodeType::Perimeter);
+    g.link(w2, w);
+    g.link(w, i);
+    g.link(i, end);
+    g.link(i, p);
+    g.link(p, p2);
+    return g;
+  };
+  RoadGraph g = graph();
+  EXPECT_EQ(simplifyIntersections(g, {}).deadEndsRemoved, 0u);
+  EXPECT_EQ(g.aliveCount(), 6u);
+  // The literal reading counts the perimeter as another road and cuts the road's end off.
+  RoadGraph literal = graph();
+  IntersectionSimplificationOptions allLinks;
+  allLinks.deadEndRoadsOnly = false;
+  EXPECT_EQ(simplifyIntersections(literal, allLinks).deadEndsRemoved, 1u);
+}
+
 TEST(CurveSmoothing, InsertsThreeTwoOneOrNoNodesPerSideByAngle) {
   const CurveSmoothingOptions defaults;
   EXPECT_EQ(defaults.passes, 8);
@@ -446,4 +471,30 @@ TEST(Smoothing, BendsOfTwoWidePrimariesKeepTheirOuterCellsWithinOneAndAHalfCells
   smoothRoads(unlimited, roads);
   smoothCurves(unlimited, curves);
   EXPECT_GT(farthestRoadCell(cells, unlimited), 1.5);
+}
+
+TEST(Connection, PrimaryStubJoinedByASecondaryRoadKeepsItsCells) {
+  // A 3-row primary stub hangs south of an east-west primary; a secondary road meets the stub from
+  // the west. The connection link makes the stub's nodes, its one-node dead end included ("linked
+  // only to other intersections"), one intersection cluster with the junction above.
+  std::vector<std::string> rows = blank(16, 12);
+  for (int c = 0; c < 16; ++c) rows[2][c] = rows[3][c] = 'P';
+  for (int r = 4; r <= 6; ++r) rows[r][7] = rows[r][8] = 'P';
+  for (int c = 0; c < 7; ++c) rows[5][c] = 's';
+  const Grid<std::uint8_t> cells = drawGrid(rows);
+  auto run = [&](double maxClusterRadius) {
+    Grid<std::uint8_t> work = cells;
+    RoadGraphOptions build;
+    build.maxClusterRadius = maxClusterRadius;
+    RoadGraph g = buildRoadGraph(work, build).graph;
+    RoadConnectionOptions connection;
+    connection.maxClusterRadius = maxClusterRadius;
+    connectRoads(g, connection);
+    EXPECT_EQ(componentCount(g), 1);
+    return farthestRoadCell(cells, g);
+  };
+  EXPECT_LE(run(RoadConnectionOptions{}.maxClusterRadius), 1.5);
+  // The documents' unbounded clusters put the stub and the junction at one mean: the stub's end
+  // patches are left about 2 cells from any road.
+  EXPECT_GT(run(0.0), 1.5);
 }
