@@ -10,6 +10,7 @@
 #include <unordered_set>
 
 #include "urbanvec/vectorize/road_graph_build.hpp"
+#include "urbanvec/vectorize/road_output.hpp"
 #include "urbanvec/vectorize/vectorize_input.hpp"
 
 namespace urbanvec::vectorize {
@@ -310,6 +311,85 @@ std::size_t restoreTouchingSegments(RoadNetwork& simplified, const RoadNetwork& 
     }
     if (changed == 0) break;
     restored += changed;
+  }
+  return restored;
+}
+
+std::size_t restoreUncoveringSegments(RoadNetwork& simplified, const RoadNetwork& exact,
+                                      const Grid<std::uint8_t>& landUse, const Grid<std::uint8_t>& cleaned,
+                                      double tolerance, double maxDistance) {
+  if (simplified.segments.size() != exact.segments.size()) return 0;
+  const int w = landUse.width, h = landUse.height;
+  if (w <= 0 || h <= 0) return 0;
+  auto roads = [](const RoadNetwork& net, std::vector<std::uint8_t>& mask, int w, int h, double r) {
+    for (const NetworkSegment& s : net.segments) {
+      if (s.roadClass == RoadClass::Perimeter) continue;
+      for (size_t k = 0; k + 1 < s.points.size(); ++k)
+        markWithin(mask, w, h, s.points[k], s.points[k + 1], r);
+    }
+  };
+  std::vector<std::uint8_t> nearSimplified(static_cast<size_t>(w) * h, 0);
+  roads(simplified, nearSimplified, w, h, maxDistance);
+  // The road cells the simplification uncovered: near no simplified road (and not removed on purpose).
+  std::vector<std::uint8_t> lost(nearSimplified.size(), 0);
+  bool anyLost = false;
+  const bool haveCleaned = cleaned.width == w && cleaned.height == h;
+  for (size_t i = 0; i < lost.size(); ++i) {
+    if (!isRoadCode(landUse.cells[i]) || nearSimplified[i]) continue;
+    if (haveCleaned && cleaned.cells[i] == kRemovedRoad) continue;
+    lost[i] = 1;
+    anyLost = true;
+  }
+  if (!anyLost) return 0;
+  // Every segment whose exact line passes within maxDistance of a lost cell gets that line back.
+  std::size_t restored = 0;
+  std::vector<std::uint8_t> near(lost.size(), 0);
+  for (size_t k = 0; k < exact.segments.size(); ++k) {
+    const NetworkSegment& s = exact.segments[k];
+    if (s.roadClass == RoadClass::Perimeter || simplified.segments[k].points == s.points) continue;
+    std::vector<size_t> touched;
+    for (size_t j = 0; j + 1 < s.points.size(); ++j) {
+      // markWithin only sets cells, so collect what this segment newly marks and clear it afterwards.
+      const Vec2 a = s.points[j], b = s.points[j + 1];
+      const double yLo = std::min(a.y, b.y) - maxDistance, yHi = std::max(a.y, b.y) + maxDistance;
+      const double xLo = std::min(a.x, b.x) - maxDistance, xHi = std::max(a.x, b.x) + maxDistance;
+      const int rowFirst = std::max(0, static_cast<int>(std::floor(h - 0.5 - yHi)));
+      const int rowLast = std::min(h - 1, static_cast<int>(std::ceil(h - 0.5 - yLo)));
+      const int colFirst = std::max(0, static_cast<int>(std::floor(xLo - 0.5)));
+      const int colLast = std::min(w - 1, static_cast<int>(std::ceil(xHi - 0.5)));
+      for (int row = rowFirst; row <= rowLast; ++row)
+        for (int col = colFirst; col <= colLast; ++col) {
+          const size_t i = static_cast<size_t>(row) * w + col;
+          if (!lost[i] || near[i]) continue;
+          const Vec2 centre(col + 0.5, h - row - 0.5);
+          if (distanceToSegment(centre, a, b) <= maxDistance + 1e-9) {
+            near[i] = 1;
+            touched.push_back(i);
+          }
+        }
+    }
+    if (!touched.empty()) {
+      // The coarsest of half, a quarter of the tolerance, or none, that covers the cells again.
+      LineString line = s.points;
+      for (double t = tolerance * 0.5; t >= tolerance * 0.25; t *= 0.5) {
+        LineString candidate = simplifyTogether({s.points}, t).front();
+        bool covers = true;
+        for (size_t i : touched) {
+          const Vec2 c(static_cast<double>(i % w) + 0.5, h - static_cast<double>(i / w) - 0.5);
+          bool near = false;
+          for (size_t j = 0; j + 1 < candidate.size() && !near; ++j)
+            near = distanceToSegment(c, candidate[j], candidate[j + 1]) <= maxDistance + 1e-9;
+          covers = covers && near;
+        }
+        if (covers) {
+          line = std::move(candidate);
+          break;
+        }
+      }
+      simplified.segments[k].points = std::move(line);
+      ++restored;
+    }
+    for (size_t i : touched) near[i] = 0;
   }
   return restored;
 }

@@ -61,6 +61,16 @@ RoadCoverageCheck checkRoadCoverage(const Grid<std::uint8_t>& landUse, const Gri
 /// Returns the number of segments restored.
 std::size_t restoreTouchingSegments(RoadNetwork& simplified, const RoadNetwork& exact);
 
+/// [INFERENCE, output only] The output simplification moves a line up to its `tolerance`; where that
+/// leaves a road cell of `landUse` (not marked kRemovedRoad in `cleaned`) farther than `maxDistance`
+/// from every simplified road, each segment whose `exact` line (the same network unsimplified, segment
+/// for segment) passes within `maxDistance` of the cell is simplified again with half, then a quarter
+/// of the tolerance, and gets its exact line back when neither covers the cell. Returns the number of
+/// segments changed. Cost: linear in grid cells plus road length.
+std::size_t restoreUncoveringSegments(RoadNetwork& simplified, const RoadNetwork& exact,
+                                      const Grid<std::uint8_t>& landUse, const Grid<std::uint8_t>& cleaned,
+                                      double tolerance, double maxDistance = 1.5);
+
 /// [INFERENCE, not in the documents] Planarizes the graph: every pair of links that cross at an
 /// interior point gets a shared node there, and links shorter than `minLength` pw are contracted, so
 /// the output meets the "cross only at shared nodes, no zero-length segments" contract after

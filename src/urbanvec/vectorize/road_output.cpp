@@ -11,9 +11,6 @@
 
 namespace urbanvec::vectorize {
 
-namespace {
-
-/// GEOS topology-preserving simplification of all lines at once (ends kept, no new crossings).
 std::vector<LineString> simplifyTogether(const std::vector<LineString>& lines, double tolerance) {
   geos::Context ctx;
   geos::GeomPtr all = ctx.multiLineString(lines);
@@ -33,6 +30,8 @@ std::vector<LineString> simplifyTogether(const std::vector<LineString>& lines, d
   }
   return out;
 }
+
+namespace {
 
 const char* className(NodeType t) {
   switch (t) {

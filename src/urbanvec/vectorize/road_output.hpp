@@ -15,6 +15,10 @@
 
 namespace urbanvec::vectorize {
 
+/// GEOS topology-preserving simplification of all lines at once: ends kept exactly, no new crossings
+/// among them. Returns the lines unchanged when GEOS changes their number.
+std::vector<LineString> simplifyTogether(const std::vector<LineString>& lines, double tolerance);
+
 /// The segments and segment-end nodes of the graph, internal frame. A node ends segments when its
 /// degree is not 2 or its two links carry different classes; rings of degree-2 nodes start at their
 /// lowest node (kind Road). When `simplifyTolerance` > 0 (pw) the segments are simplified together

@@ -3,6 +3,9 @@
 // then intersections whose roads pass almost straight through are put back on the line.
 #pragma once
 
+#include <cstdint>
+
+#include "urbanvec/core/grid.hpp"
 #include "urbanvec/core/progress.hpp"
 #include "urbanvec/vectorize/road_graph.hpp"
 
@@ -34,6 +37,12 @@ struct RoadSmoothingOptions {
   int perimeterPasses = 2;
   /// Largest distance a node may end up from the cells it was placed for, in pw (kDefaultSmoothingReach).
   double reach = kDefaultSmoothingReach;
+  /// [INFERENCE, beyond the documents] When set (LandUse codes after A3/A4), a node's averaging move is
+  /// undone when it would leave a road cell its links covered farther than `coverRadius` pw from them:
+  /// the one-cell fringes of 3-wide primary stretches otherwise creep out of reach. nullptr = the
+  /// documents' unconstrained averaging (within `reach`).
+  const Grid<std::uint8_t>* coverCells = nullptr;
+  double coverRadius = 1.5;
 };
 
 struct RoadSmoothingStats {
@@ -44,7 +53,10 @@ struct RoadSmoothingStats {
 /// One Jacobi averaging pass: each node with `movable[i]` takes the mean of its position and its
 /// same-type neighbours' positions, pulled back onto the circle of radius smoothingShiftLimit(type,
 /// `reach`) around its placement when the mean lies farther. Shared with curve smoothing (B6).
-void averagePass(RoadGraph& graph, const std::vector<char>& movable, double reach);
+/// With `coverCells`, a move is undone when it would leave a road cell its links covered (within
+/// `coverRadius`) uncovered by them.
+void averagePass(RoadGraph& graph, const std::vector<char>& movable, double reach,
+                 const Grid<std::uint8_t>* coverCells = nullptr, double coverRadius = 1.5);
 
 /// Which nodes B2/B6 may move: alive road nodes that are not dead ends, intersections (or, when
 /// `fixConnections`, primary/secondary connection nodes) and have at least two same-type neighbours.

@@ -150,7 +150,9 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
     return counts(s.intersections, " intersections, ", s.pairsSnapped, " pairs snapped");
   });
   run("B2", "road smoothing", 0.05, true, [&](const Progress& p) {
-    const RoadSmoothingStats s = smoothRoads(graph, options.roadSmoothing, p);
+    RoadSmoothingOptions smoothing = options.roadSmoothing;
+    if (options.keepRoadCellsCovered) smoothing.coverCells = &result.cells;
+    const RoadSmoothingStats s = smoothRoads(graph, smoothing, p);
     return counts(s.nodesMoved, " nodes smoothed, ", s.intersectionsMoved, " intersections re-straightened");
   });
   run("B3", "primary/secondary connection", 0.1, true, [&](const Progress& p) {
@@ -173,7 +175,9 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
                   s.intersectionsMerged, " intersections merged");
   });
   run("B6", "curve smoothing", 0.12, true, [&](const Progress& p) {
-    const CurveSmoothingStats s = smoothCurves(graph, options.curves, p);
+    CurveSmoothingOptions curves = options.curves;
+    if (options.keepRoadCellsCovered) curves.coverCells = &result.cells;
+    const CurveSmoothingStats s = smoothCurves(graph, curves, p);
     return counts(s.bends, " bends, ", s.nodesInserted, " nodes inserted, ", s.passes, " passes");
   });
   run("F", "road output", 0.05, false, [&](const Progress& p) {
@@ -189,14 +193,19 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
     }
     reportProgress(p, 0.5, "road output");
     result.network = buildRoadNetwork(graph, options.outputSimplification);
-    std::size_t restored = 0;
-    if (options.outputSimplification > 0)
-      restored = restoreTouchingSegments(result.network, buildRoadNetwork(graph, 0.0));
+    std::size_t restored = 0, uncovering = 0;
+    if (options.outputSimplification > 0) {
+      const RoadNetwork exact = buildRoadNetwork(graph, 0.0);
+      uncovering = restoreUncoveringSegments(result.network, exact, input.landUse, result.cells,
+                                             options.outputSimplification);
+      restored = restoreTouchingSegments(result.network, exact);
+    }
     std::vector<Layer> layers = roadLayers(result.network, input.spec);
     const std::size_t segments = layers[0].features.size();
     for (Layer& l : layers) result.layers.push_back(std::move(l));
     return counts(noded, " crossings noded, ", segments, " road segments, ", restored,
-                  " kept unsimplified (touching another)");
+                  " kept unsimplified (touching another), ", uncovering,
+                  " simplified less (uncovering a road cell)");
   });
   if (!options.roadsOnly) {
     const auto t0 = std::chrono::steady_clock::now();

@@ -498,3 +498,26 @@ TEST(Connection, PrimaryStubJoinedByASecondaryRoadKeepsItsCells) {
   // patches are left about 2 cells from any road.
   EXPECT_GT(run(0.0), 1.5);
 }
+
+TEST(Smoothing, AMoveThatWouldUncoverARoadCellIsCutBack) {
+  // A zigzag of secondary nodes on a 10 x 10 grid; only the middle node (5.5, 5.5) may move, and the
+  // mean of it and its neighbours (4.5, 6.5), (6.5, 6.5) lies at y = 6.17. The road cell centred at
+  // (5.5, 4.5), 1 cell below it, would end up 1.67 cells from every link.
+  RoadGraph g;
+  const std::vector<Vec2> chain = {{2.5, 5.5}, {3.5, 5.5}, {4.5, 6.5}, {5.5, 5.5},
+                                   {6.5, 6.5}, {7.5, 5.5}, {8.5, 5.5}};
+  for (const Vec2& p : chain) g.addNode(p, NodeType::Secondary);
+  for (int k = 0; k + 1 < static_cast<int>(chain.size()); ++k) g.link(k, k + 1);
+  Grid<std::uint8_t> cells(10, 10, 0);
+  for (const Vec2& p : chain) cells.at(static_cast<int>(p.x), static_cast<int>(10 - p.y)) = 2;
+  cells.at(5, 5) = 2;  // centre (5.5, 4.5)
+  std::vector<char> movable(chain.size(), 0);
+  movable[3] = 1;
+  RoadGraph free = g;
+  averagePass(free, movable, 0.0);
+  EXPECT_NEAR(free.nodes[3].p.y, 6.5 - 1.0 / 3.0, 1e-9);
+  averagePass(g, movable, 0.0, &cells, 1.5);
+  // Halved once: 1.33 cells from the cell.
+  EXPECT_NEAR(g.nodes[3].p.y, 5.5 + 1.0 / 3.0, 1e-9);
+  EXPECT_LE(distance(g.nodes[3].p, {5.5, 4.5}), 1.5);
+}

@@ -271,3 +271,28 @@ TEST(GridInput, RastersMustShareTheGridAndHoldClassCodes) {
   }
   std::filesystem::remove_all(dir);
 }
+
+TEST(Output, SimplificationThatUncoversARoadCellIsUndoneOnlyAsFarAsNeeded) {
+  // One segment bending up to (5.5, 7) on a 12 x 12 grid; simplified to its chord at y = 5.5 it leaves
+  // the road cell centred at (5.5, 8.5) 3 cells away. Half the tolerance keeps the bend.
+  RoadNetwork exact;
+  exact.nodes = {{{0.5, 5.5}, NetworkNodeKind::DeadEnd, 1}, {{10.5, 5.5}, NetworkNodeKind::DeadEnd, 1}};
+  NetworkSegment s;
+  s.points = {{0.5, 5.5}, {5.5, 7.0}, {10.5, 5.5}};
+  s.fromNode = 0;
+  s.toNode = 1;
+  exact.segments = {s};
+  RoadNetwork simplified = exact;
+  simplified.segments[0].points = {{0.5, 5.5}, {10.5, 5.5}};
+  Grid<std::uint8_t> landUse(12, 12, 0);
+  landUse.at(5, 3) = 2;  // centre (5.5, 8.5)
+  EXPECT_EQ(restoreUncoveringSegments(simplified, exact, landUse, Grid<std::uint8_t>(), 2.0), 1u);
+  EXPECT_EQ(simplified.segments[0].points, exact.segments[0].points);
+  // A cell the chord still covers changes nothing.
+  RoadNetwork chord = exact;
+  chord.segments[0].points = {{0.5, 5.5}, {10.5, 5.5}};
+  Grid<std::uint8_t> near(12, 12, 0);
+  near.at(5, 5) = 2;  // centre (5.5, 6.5)
+  EXPECT_EQ(restoreUncoveringSegments(chord, exact, near, Grid<std::uint8_t>(), 2.0), 0u);
+  EXPECT_EQ(chord.segments[0].points.size(), 2u);
+}
