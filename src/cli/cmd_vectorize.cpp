@@ -278,8 +278,8 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
 
   if (args.flag("-check")) {
     const vectorize::RoadNetworkCheck check = vectorize::checkRoadNetwork(result.layers[0], result.layers[1]);
-    const vectorize::RoadCoverageCheck coverage =
-        vectorize::checkRoadCoverage(input.landUse, result.cells, result.network, result.cycleRemovedLinks);
+    const vectorize::RoadCoverageCheck coverage = vectorize::checkRoadCoverage(
+        input.landUse, result.cells, result.network, result.cycleRemovedLinks, result.deadEndRemovedLinks);
     if (ctx.out) *ctx.out << "topology: " << check.describe() << "\n" << coverage.describe() << "\n";
     if (!check.ok()) throw internalError("the road topology check failed: " + check.describe());
     // Coverage is a quality figure, not part of the output contract: a shortfall is reported, and the

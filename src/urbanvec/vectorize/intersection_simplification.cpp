@@ -46,6 +46,7 @@ IntersectionSimplificationStats simplifyIntersections(RoadGraph& graph,
           const Vec2 uo = graph.nodes[o].p - graph.nodes[i].p;
           const double ld = length(ud), lo = length(uo);
           if (ld == 0 || lo == 0 || dot(ud, uo) / (ld * lo) > cosLimit) {
+            stats.removedLinks.push_back({graph.nodes[i].p, dn.p});
             graph.removeNode(d);
             ++stats.deadEndsRemoved;
             changed = true;

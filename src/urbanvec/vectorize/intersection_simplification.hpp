@@ -3,6 +3,9 @@
 // an intersection (primary within 1 pw, secondary within 0.5 pw) are contracted into it.
 #pragma once
 
+#include <array>
+#include <vector>
+
 #include "urbanvec/core/progress.hpp"
 #include "urbanvec/vectorize/road_graph.hpp"
 
@@ -27,6 +30,8 @@ struct IntersectionSimplificationOptions {
 
 struct IntersectionSimplificationStats {
   std::size_t deadEndsRemoved = 0;
+  /// The links of the removed dead ends (internal frame), removed on purpose for the coverage check.
+  std::vector<std::array<Vec2, 2>> removedLinks;
   std::size_t nodesContracted = 0;
   std::size_t intersectionsMerged = 0;
 };

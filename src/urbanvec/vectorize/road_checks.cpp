@@ -202,7 +202,8 @@ std::string RoadCoverageCheck::describe() const {
   std::ostringstream s;
   s << "road cells farther than " << maxDistance << " cells from a road: " << far << " of " << roadCells
     << " (" << removedOnPurpose() << " more removed on purpose: " << farRemovedPatches
-    << " extraneous or 2x2 patches (A3, A4.3), " << farRemovedCycles << " short-cycle roads (B4))";
+    << " extraneous or 2x2 patches (A3, A4.3), " << farRemovedCycles << " short-cycle roads (B4), "
+    << farRemovedDeadEnds << " dead ends (B5))";
   for (size_t k = 0; k < farSamples.size(); ++k)
     s << (k == 0 ? "; far cells at column,row " : ", ") << farSamples[k].col << "," << farSamples[k].row;
   if (far > farSamples.size()) s << ", ...";
@@ -212,6 +213,7 @@ std::string RoadCoverageCheck::describe() const {
 RoadCoverageCheck checkRoadCoverage(const Grid<std::uint8_t>& landUse, const Grid<std::uint8_t>& cleaned,
                                     const RoadNetwork& network,
                                     const std::vector<std::array<Vec2, 2>>& cycleRemovedLinks,
+                                    const std::vector<std::array<Vec2, 2>>& deadEndRemovedLinks,
                                     double maxDistance) {
   RoadCoverageCheck check;
   check.maxDistance = maxDistance;
@@ -224,10 +226,14 @@ RoadCoverageCheck checkRoadCoverage(const Grid<std::uint8_t>& landUse, const Gri
       markWithin(nearRoad, w, h, s.points[k], s.points[k + 1], maxDistance);
     if (s.points.size() == 1) markWithin(nearRoad, w, h, s.points[0], s.points[0], maxDistance);
   }
-  std::vector<std::uint8_t> nearRemoved;
+  std::vector<std::uint8_t> nearRemoved, nearDeadEnd;
   if (!cycleRemovedLinks.empty()) {
     nearRemoved.assign(nearRoad.size(), 0);
     for (const auto& [a, b] : cycleRemovedLinks) markWithin(nearRemoved, w, h, a, b, maxDistance);
+  }
+  if (!deadEndRemovedLinks.empty()) {
+    nearDeadEnd.assign(nearRoad.size(), 0);
+    for (const auto& [a, b] : deadEndRemovedLinks) markWithin(nearDeadEnd, w, h, a, b, maxDistance);
   }
   const bool haveCleaned = cleaned.width == w && cleaned.height == h;
   for (size_t i = 0; i < landUse.cells.size(); ++i) {
@@ -238,6 +244,8 @@ RoadCoverageCheck checkRoadCoverage(const Grid<std::uint8_t>& landUse, const Gri
       ++check.farRemovedPatches;
     } else if (!nearRemoved.empty() && nearRemoved[i]) {
       ++check.farRemovedCycles;
+    } else if (!nearDeadEnd.empty() && nearDeadEnd[i]) {
+      ++check.farRemovedDeadEnds;
     } else {
       ++check.far;
       if (check.farSamples.size() < 5)

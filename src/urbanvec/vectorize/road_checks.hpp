@@ -38,8 +38,9 @@ struct RoadCoverageCheck {
   std::size_t far = 0;        ///< farther than maxDistance from every road, and not removed on purpose
   std::size_t farRemovedPatches = 0;  ///< farther, but set to removed road by A3 (extraneous patches) or A4.3
   std::size_t farRemovedCycles = 0;   ///< farther, but within maxDistance of a link B4 removed (short cycles)
+  std::size_t farRemovedDeadEnds = 0;  ///< farther, but within maxDistance of a dead end B5 removed
   std::vector<GridCell> farSamples;   ///< the first far cells in row-major order (at most 5), for messages
-  std::size_t removedOnPurpose() const { return farRemovedPatches + farRemovedCycles; }
+  std::size_t removedOnPurpose() const { return farRemovedPatches + farRemovedCycles + farRemovedDeadEnds; }
   bool ok() const { return far == 0; }
   std::string describe() const;
 };
@@ -48,10 +49,12 @@ struct RoadCoverageCheck {
 /// `maxDistance` cells from every primary or secondary segment of `network` (perimeter lines are no
 /// roads). A far cell is excused as removed on purpose when `cleaned` (the codes after A3/A4) marks it
 /// kRemovedRoad, or when it lies within `maxDistance` of one of `cycleRemovedLinks` (B4's removed
-/// links, internal frame). Cost: linear in grid cells plus road length (a distance mask, no search).
+/// links, internal frame) or of `deadEndRemovedLinks` (B5's). Cost: linear in grid cells plus road
+/// length (a distance mask, no search).
 RoadCoverageCheck checkRoadCoverage(const Grid<std::uint8_t>& landUse, const Grid<std::uint8_t>& cleaned,
                                     const RoadNetwork& network,
                                     const std::vector<std::array<Vec2, 2>>& cycleRemovedLinks,
+                                    const std::vector<std::array<Vec2, 2>>& deadEndRemovedLinks = {},
                                     double maxDistance = 1.5);
 
 /// [INFERENCE, output only] GEOS's topology-preserving simplification keeps lines from crossing, but it

@@ -170,7 +170,8 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
                   s.rounds, " rounds, ", s.developedFacesKept, " faces around developed land kept");
   });
   run("B5", "intersection simplification", 0.05, true, [&](const Progress& p) {
-    const IntersectionSimplificationStats s = simplifyIntersections(graph, options.intersections, p);
+    IntersectionSimplificationStats s = simplifyIntersections(graph, options.intersections, p);
+    result.deadEndRemovedLinks = std::move(s.removedLinks);
     return counts(s.deadEndsRemoved, " dead ends removed, ", s.nodesContracted, " nodes contracted, ",
                   s.intersectionsMerged, " intersections merged");
   });

@@ -83,6 +83,8 @@ struct VectorizeResult {
   /// The road links B4 removed (short cycles), as they lay when removed, internal frame: the roads the
   /// pipeline dropped on purpose, for checkRoadCoverage (road_checks.hpp).
   std::vector<std::array<Vec2, 2>> cycleRemovedLinks;
+  /// Links of the dead ends B5 removed (internal frame), for the same check.
+  std::vector<std::array<Vec2, 2>> deadEndRemovedLinks;
   std::vector<std::string> warnings;
   /// Stages C-E (empty when roadsOnly).
   CityResult city;

@@ -302,6 +302,10 @@ TEST(IntersectionSimplification, SharpDeadEndsAndCloseNodesGo) {
   g.link(close, far);
   const IntersectionSimplificationStats st = simplifyIntersections(g, {});
   EXPECT_EQ(st.deadEndsRemoved, 1u);
+  // The removed dead end's link is recorded for the coverage check (removed on purpose).
+  ASSERT_EQ(st.removedLinks.size(), 1u);
+  EXPECT_EQ(st.removedLinks[0][0], Vec2(0, 0));
+  EXPECT_EQ(st.removedLinks[0][1], Vec2(0.8, 0.6));
   EXPECT_EQ(st.nodesContracted, 1u);
   // The crossing keeps four arms, the northern one now linked straight to `far`.
   ASSERT_EQ(countDegree(g, 4), 1);

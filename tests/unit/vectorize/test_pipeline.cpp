@@ -296,3 +296,17 @@ TEST(Output, SimplificationThatUncoversARoadCellIsUndoneOnlyAsFarAsNeeded) {
   EXPECT_EQ(restoreUncoveringSegments(chord, exact, near, Grid<std::uint8_t>(), 2.0), 0u);
   EXPECT_EQ(chord.segments[0].points.size(), 2u);
 }
+
+TEST(Checker, CoverageExcusesCellsOfRemovedDeadEndsAndCountsThemApart) {
+  // One road cell at (5, 5) on a 10 x 10 grid and no road: far, unless a removed link passes by.
+  Grid<std::uint8_t> landUse(10, 10, 0);
+  landUse.at(5, 5) = 2;  // centre (5.5, 4.5)
+  const RoadNetwork none;
+  EXPECT_EQ(checkRoadCoverage(landUse, Grid<std::uint8_t>(), none, {}).far, 1u);
+  const std::array<Vec2, 2> link = {Vec2(4.5, 4.5), Vec2(6.5, 4.5)};
+  const RoadCoverageCheck deadEnd = checkRoadCoverage(landUse, Grid<std::uint8_t>(), none, {}, {link});
+  EXPECT_EQ(deadEnd.far, 0u);
+  EXPECT_EQ(deadEnd.farRemovedDeadEnds, 1u);
+  EXPECT_EQ(deadEnd.removedOnPurpose(), 1u);
+  EXPECT_NE(deadEnd.describe().find("1 dead ends (B5)"), std::string::npos) << deadEnd.describe();
+}
