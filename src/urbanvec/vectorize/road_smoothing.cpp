@@ -31,8 +31,7 @@ constexpr double kSmallestMove = 0.05;
 class LinkBuckets {
  public:
   LinkBuckets(const RoadGraph& graph, const std::vector<Vec2>& pos, int w, int h)
-      : pos_(pos),
-        w_(std::max(1, (w + kBucket - 1) / kBucket)),
+      : w_(std::max(1, (w + kBucket - 1) / kBucket)),
         h_(std::max(1, (h + kBucket - 1) / kBucket)),
         start_(static_cast<size_t>(w_) * h_ + 1, 0) {
     // Counting pass, then a fill pass into one flat array.
@@ -72,16 +71,12 @@ class LinkBuckets {
       }
     return false;
   }
-  bool covers(const Vec2& p, double r) const {
-    return anyNear(p, r, [&](int a, int b) { return distanceToSegment(p, pos_[a], pos_[b]) <= r; });
-  }
 
  private:
   /// Bucket side, in cells: 4 keeps the index small and a 1.5-cell query within 2 x 2 buckets.
   static constexpr int kBucket = 4;
   int cx(double v) const { return std::clamp(static_cast<int>(std::floor(v / kBucket)), 0, w_ - 1); }
   int cy(double v) const { return std::clamp(static_cast<int>(std::floor(v / kBucket)), 0, h_ - 1); }
-  const std::vector<Vec2>& pos_;
   int w_, h_;
   std::vector<std::int32_t> start_;
   std::vector<std::pair<std::int32_t, std::int32_t>> links_;
@@ -131,13 +126,17 @@ void undoUncoveringMoves(const RoadGraph& graph, const std::vector<char>& movabl
   candidates.erase(
       std::remove_if(candidates.begin(), candidates.end(), [&](std::int64_t k) { return !atRisk(k); }),
       candidates.end());
+  // A link's new position lies within `largest` of its old one, so the old index finds it.
+  auto coveredNow = [&](const Vec2& c) {
+    return before.anyNear(c, r + largest,
+                          [&](int a, int b) { return distanceToSegment(c, next[a], next[b]) <= r; });
+  };
   for (bool undone = !candidates.empty(); undone;) {
     undone = false;
-    const LinkBuckets after(graph, next, cells.width, h);
     for (std::int64_t k : candidates) {
       const Vec2 c(static_cast<double>(k % cells.width) + 0.5,
                    h - static_cast<double>(k / cells.width) - 0.5);
-      if (after.covers(c, r)) continue;
+      if (coveredNow(c)) continue;
       // Halve the moves of the ends of every link that covered it, down to none: its old links cover
       // it again at the latest.
       std::vector<int> ends;  // a link lies in several buckets: each end is cut back once per cell
