@@ -187,12 +187,24 @@ void addIslandBlocks(const geos::Context& ctx, const SimulatedCity& city, const 
     const LandUse u = grid.at(c, r);
     return u == LandUse::Unused || u == LandUse::Water || u == LandUse::Reserved;
   };
-  std::vector<bool> covered(city.blocks.size(), false);
-  for (const Polygon& block : out.blocks)
-    for (const auto& [b, cells] : tallyCells(block, blockOfCell, grid).blocks) covered[b] = true;
+  std::vector<geos::GeomPtr> kept;
+  std::vector<const GEOSGeometry*> keptRaw;
+  for (const Polygon& block : out.blocks) {
+    kept.push_back(ctx.polygon(block));
+    keptRaw.push_back(kept.back().get());
+  }
+  const GeometryIndex keptIndex(ctx, keptRaw);
+  geos::PreparedGeometries preparedKept(ctx, keptRaw);
+  // A face D4 kept may already hold the island (a pier in a harbour inside an external block).
+  auto covered = [&](const SimulatedBlock& block) {
+    geos::GeomPtr centre = ctx.point(cellCentre(block.cells.front(), h));
+    for (int k : keptIndex.query(centre.get()))
+      if (GEOSPreparedContains_r(ctx.handle(), preparedKept[k], centre.get()) == 1) return true;
+    return false;
+  };
   for (size_t b = 0; b < city.blocks.size(); ++b) {
     const SimulatedBlock& block = city.blocks[b];
-    if (block.internal || covered[b] || block.cells.empty()) continue;
+    if (block.internal || block.cells.empty()) continue;
     bool island = true;
     // Its A4.8 edges close on themselves exactly when every 4-neighbour outside it is undeveloped.
     const int dc[4] = {0, 1, 0, -1}, dr[4] = {-1, 0, 1, 0};
@@ -202,7 +214,7 @@ void addIslandBlocks(const geos::Context& ctx, const SimulatedCity& city, const 
         if (blockOfCell.inside(c, r) && blockOfCell.at(c, r) == static_cast<int>(b)) continue;
         island = undeveloped(c, r);
       }
-    if (!island) continue;
+    if (!island || covered(block)) continue;
     std::vector<geos::GeomPtr> squares;
     for (const GridCell& cell : block.cells) {
       const double x0 = cell.col, y0 = h - cell.row - 1.0;
