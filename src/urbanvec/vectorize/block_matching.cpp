@@ -133,26 +133,39 @@ BlockMatching matchSimulatedBlocks(const std::vector<Polygon>& vectorBlocks, con
       rule = MatchRule::CellCentre;
     }
     if (v < 0 && options.matchByCellOverlap) {
-      // Every cell centre lies under pavement; the land still overlapping a vector block went there.
+      // No cell centre lies in a vector block; the land still overlapping one went there.
+      // Each candidate is clipped once to the cells' box, so a cell meets a small piece, not a city.
       const size_t n = block.cells.size();
       const size_t counted = std::min(n, static_cast<size_t>(std::max(1, options.maxCellsCounted)));
-      std::map<int, double> overlap;
+      double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
       for (size_t k = 0; k < counted; ++k) {
         const GridCell cell = block.cells[k * n / counted];
-        const double x0 = cell.col, y0 = h - cell.row - 1.0;
-        geos::GeomPtr square =
-            ctx.polygon({{{x0, y0}, {x0 + 1, y0}, {x0 + 1, y0 + 1}, {x0, y0 + 1}, {x0, y0}}, {}});
-        for (int w : index.query(square.get())) {
-          geos::GeomPtr part =
-              ctx.own(GEOSIntersection_r(ctx.handle(), raw[w], square.get()), "intersection");
-          double area = 0.0;
-          GEOSArea_r(ctx.handle(), part.get(), &area);
-          if (area > 0.0) overlap[w] += area;
-        }
+        x0 = std::min(x0, static_cast<double>(cell.col));
+        x1 = std::max(x1, cell.col + 1.0);
+        y0 = std::min(y0, h - cell.row - 1.0);
+        y1 = std::max(y1, static_cast<double>(h - cell.row));
       }
+      geos::GeomPtr box = ctx.polygon({{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}, {x0, y0}}, {}});
       double best = options.minOverlapArea;
-      for (const auto& [w, area] : overlap)
+      std::vector<int> candidates = index.query(box.get());
+      std::sort(candidates.begin(), candidates.end());  // ties go to the lowest index
+      for (int w : candidates) {
+        GEOSGeometry* clipped = GEOSClipByRect_r(ctx.handle(), raw[w], x0, y0, x1, y1);
+        if (!clipped) continue;  // GEOS could not clip this block: it takes no part in the rule
+        geos::GeomPtr piece = ctx.own(clipped, "clip");
+        double area = 0.0;
+        for (size_t k = 0; k < counted; ++k) {
+          const GridCell cell = block.cells[k * n / counted];
+          const double cx = cell.col, cy = h - cell.row - 1.0;
+          GEOSGeometry* part = GEOSClipByRect_r(ctx.handle(), piece.get(), cx, cy, cx + 1, cy + 1);
+          if (!part) continue;
+          double a = 0.0;
+          GEOSArea_r(ctx.handle(), part, &a);
+          GEOSGeom_destroy_r(ctx.handle(), part);
+          area += a;
+        }
         if (area > best) v = w, best = area;
+      }
       if (v >= 0) {
         rule = MatchRule::CellOverlap;
         ++out.overlapUses;

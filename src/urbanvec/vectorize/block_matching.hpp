@@ -48,8 +48,9 @@ struct BlockMatchingOptions {
   bool matchByCellOverlap = true;
   double minOverlapArea = 0.01;
   /// [INFERENCE, beyond the documents] A block with no parcels whose cells overlap no vector block
-  /// (a sliver between carriageways that the pavement covers) stays unmatched instead of taking the
-  /// failsafe: it has nothing to place, and its land is road now. false = the documents' failsafe.
+  /// (mostly a sliver between carriageways that the pavement covers, else land no block was built
+  /// on) stays unmatched instead of taking the failsafe: it has nothing to place. false = the
+  /// documents' failsafe.
   bool leaveBlocksUnderPavement = true;
 };
 

@@ -21,7 +21,7 @@ struct CurveSmoothingOptions {
   /// Largest distance a node may end up from the cells it was placed for, in pw
   /// (kDefaultSmoothingReach); an inserted node is placed on the line between its link ends' placements.
   double reach = kDefaultSmoothingReach;
-  /// As RoadSmoothingOptions::coverCells / coverRadius.
+  /// [INFERENCE, beyond the documents] As RoadSmoothingOptions::coverCells / coverRadius (pw).
   const Grid<std::uint8_t>* coverCells = nullptr;
   double coverRadius = 1.5;
 };

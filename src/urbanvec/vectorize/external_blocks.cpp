@@ -115,10 +115,10 @@ ExternalBlocks buildExternalBlocks(const RoadNetwork& network, const MultiPolygo
     ticker.tick();
     if (seg.roadClass != RoadClass::Perimeter || seg.points.size() < 2) continue;
     ++out.boundaryLines;
-    // The A4.8 line had a node at every cell corner; output simplification kept only its turns, so the
-    // D3 node share is taken over the line resampled at corner spacing.
     std::vector<bool> inside;
-    for (const Vec2& p : densified(seg.points, 1.0)) inside.push_back(insidePerimeter(p));
+    const LineString nodes =
+        options.insideShareSpacing > 0.0 ? densified(seg.points, options.insideShareSpacing) : seg.points;
+    for (const Vec2& p : nodes) inside.push_back(insidePerimeter(p));
     if (boundaryLineTrappedInside(inside, options.insideNodeShare)) {
       ++out.deletedLines;
       continue;
@@ -185,7 +185,8 @@ void addIslandBlocks(const geos::Context& ctx, const SimulatedCity& city, const 
   auto undeveloped = [&](int c, int r) {
     if (!grid.inside(c, r)) return true;
     const LandUse u = grid.at(c, r);
-    return u == LandUse::Unused || u == LandUse::Water || u == LandUse::Reserved;
+    return u == LandUse::Unused || (options.waterIsUndeveloped && u == LandUse::Water) ||
+           (options.reservedIsUndeveloped && u == LandUse::Reserved && blockOfCell.at(c, r) < 0);
   };
   std::vector<geos::GeomPtr> kept;
   std::vector<const GEOSGeometry*> keptRaw;
@@ -195,11 +196,11 @@ void addIslandBlocks(const geos::Context& ctx, const SimulatedCity& city, const 
   }
   const GeometryIndex keptIndex(ctx, keptRaw);
   geos::PreparedGeometries preparedKept(ctx, keptRaw);
-  // A face D4 kept may already hold the island (a pier in a harbour inside an external block).
-  auto covered = [&](const SimulatedBlock& block) {
-    geos::GeomPtr centre = ctx.point(cellCentre(block.cells.front(), h));
-    for (int k : keptIndex.query(centre.get()))
-      if (GEOSPreparedContains_r(ctx.handle(), preparedKept[k], centre.get()) == 1) return true;
+  // A face D4 kept may already hold part of the island (a pier in a harbour inside an external
+  // block, or land next to a removed road patch, which A4.8 does not count as undeveloped).
+  auto covered = [&](const GEOSGeometry* island) {
+    for (int k : keptIndex.query(island))
+      if (GEOSPreparedIntersects_r(ctx.handle(), preparedKept[k], island) == 1) return true;
     return false;
   };
   for (size_t b = 0; b < city.blocks.size(); ++b) {
@@ -214,7 +215,7 @@ void addIslandBlocks(const geos::Context& ctx, const SimulatedCity& city, const 
         if (blockOfCell.inside(c, r) && blockOfCell.at(c, r) == static_cast<int>(b)) continue;
         island = undeveloped(c, r);
       }
-    if (!island || covered(block)) continue;
+    if (!island) continue;
     std::vector<geos::GeomPtr> squares;
     for (const GridCell& cell : block.cells) {
       const double x0 = cell.col, y0 = h - cell.row - 1.0;
@@ -222,6 +223,7 @@ void addIslandBlocks(const geos::Context& ctx, const SimulatedCity& city, const 
           ctx.polygon({{{x0, y0}, {x0 + 1, y0}, {x0 + 1, y0 + 1}, {x0, y0 + 1}, {x0, y0}}, {}}));
     }
     geos::GeomPtr cells = unionOnGrid(ctx, std::move(squares), options.precisionGrid);
+    if (covered(cells.get())) continue;
     for (const Polygon& part : ctx.toPolygons(cells.get())) {
       Polygon smooth{
           smoothClosedRing(part.outer, options.boundarySmoothingPasses, options.boundaryResampleSpacing), {}};

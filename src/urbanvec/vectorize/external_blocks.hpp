@@ -46,6 +46,15 @@ struct ExternalBlocksOptions {
   /// face; its cell outline, smoothed like a boundary line, becomes its block. false = such blocks
   /// go to the failsafe.
   bool islandBlocks = true;
+  /// Which land around an island counts as undeveloped, as PerimeterOptions (A4.8); vectorize copies
+  /// them from there so the islands are exactly the blocks A4.8 gave only closed loops.
+  bool waterIsUndeveloped = true;
+  bool reservedIsUndeveloped = true;
+  /// [INFERENCE] D3 counts a boundary line's nodes at this spacing along it, in pw: the A4.8 line had
+  /// a node at every cell corner, but output simplification kept only its turns, and a straight
+  /// two-point line between two culs-de-sac (both ends in pavement, all its length in the open)
+  /// would count as 100% inside. 0 = the output vertices (the documents' "nodes" read literally).
+  double insideShareSpacing = 1.0;
 };
 
 struct ExternalBlocks {

@@ -20,7 +20,8 @@ PerimeterStats addExternalPerimeters(RoadGraph& graph, const Grid<std::uint8_t>&
     const std::uint8_t v = cells.at(c, r);
     return v == static_cast<std::uint8_t>(LandUse::Unused) ||
            (options.waterIsUndeveloped && v == static_cast<std::uint8_t>(LandUse::Water)) ||
-           (options.reservedIsUndeveloped && v == static_cast<std::uint8_t>(LandUse::Reserved));
+           (options.reservedIsUndeveloped && v == static_cast<std::uint8_t>(LandUse::Reserved) &&
+            blockOf.at(c, r) < 0);
   };
   auto external = [&](int c, int r) {
     if (!cells.inside(c, r)) return false;

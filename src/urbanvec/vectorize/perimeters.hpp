@@ -17,9 +17,9 @@ struct PerimeterOptions {
   /// Treat water next to an external block as undeveloped land (Q7, [INFERENCE]); cells outside the
   /// grid always count as undeveloped.
   bool waterIsUndeveloped = true;
-  /// [INFERENCE] Treat reserved land next to an external block as undeveloped too: reserved patches
-  /// belong to no block (A2), so without this a perimeter stops where the undeveloped edge meets
-  /// reserved land and the external block it bounds never closes (D4).
+  /// [INFERENCE] Treat reserved land that belongs to no block (A2 excludes it by default) as
+  /// undeveloped too: otherwise a perimeter stops where the undeveloped edge meets reserved land and
+  /// the external block it bounds never closes (D4).
   bool reservedIsUndeveloped = true;
 };
 

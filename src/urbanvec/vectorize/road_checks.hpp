@@ -69,7 +69,8 @@ std::size_t restoreTouchingSegments(RoadNetwork& simplified, const RoadNetwork& 
 /// from every simplified road, each segment whose `exact` line (the same network unsimplified, segment
 /// for segment) passes within `maxDistance` of the cell is simplified again with half, then a quarter
 /// of the tolerance, and gets its exact line back when neither covers the cell. Returns the number of
-/// segments changed. Cost: linear in grid cells plus road length.
+/// segments changed. Cost: linear in grid cells plus road length. A segment simplified on its own may
+/// touch another: run restoreTouchingSegments afterwards.
 std::size_t restoreUncoveringSegments(RoadNetwork& simplified, const RoadNetwork& exact,
                                       const Grid<std::uint8_t>& landUse, const Grid<std::uint8_t>& cleaned,
                                       double tolerance, double maxDistance = 1.5);

@@ -57,7 +57,7 @@ std::size_t simplifyIntersectionClusters(RoadGraph& graph, bool collapseTwoLinkC
     // A cluster reaching farther than maxClusterRadius from its mean is several junctions joined by
     // short roads; it keeps its nodes.
     if (maxClusterRadius > 0.0 && std::any_of(cluster.begin(), cluster.end(), [&](int i) {
-          return distance(graph.nodes[i].p, mean) > maxClusterRadius;
+          return distance(graph.nodes[i].p, mean) > maxClusterRadius + 1e-9;
         }))
       continue;
     const NodeType type = anyPrimary ? NodeType::Primary : graph.nodes[cluster.front()].type;

@@ -15,7 +15,7 @@ constexpr double kOvershoot = 1e-7;
 /// Faces smaller than this share of the polygon are noding slivers (a cut that meets the boundary at a
 /// vertex leaves a face of ~1e-20 cells², which collapses to repeated points in world coordinates).
 constexpr double kSliverShare = 1e-9;
-/// Grid of the snap-rounding fallback when plain noding fails, cells.
+/// [INFERENCE] Grid of the snap-rounding fallback when plain noding fails, cells.
 constexpr double kNodingFallbackGrid = 1e-9;
 
 }  // namespace
@@ -30,11 +30,9 @@ MultiPolygon facesInside(const geos::Context& geos, const GEOSGeometry* polygon,
   geos::GeomPtr all = geos.collection(GEOS_GEOMETRYCOLLECTION, std::move(parts));
   GEOSGeometry* nodedRaw = GEOSNode_r(h, all.get());
   if (!nodedRaw) {
-    // Floating-point noding can fail to converge on near-coincident cuts; snap-rounded noding on a
-    // grid far below the tiling tolerance does not.
-    geos::GeomPtr snapped =
-        geos.own(GEOSGeom_setPrecision_r(h, all.get(), kNodingFallbackGrid, 0), "set precision");
-    nodedRaw = GEOSNode_r(h, snapped.get());
+    // Floating-point noding can fail to converge on near-coincident cuts; the snap-rounding union on
+    // a grid far below the tiling tolerance always nodes.
+    nodedRaw = GEOSUnaryUnionPrec_r(h, all.get(), kNodingFallbackGrid);
   }
   geos::GeomPtr noded = geos.own(nodedRaw, "node");
   const GEOSGeometry* lines[] = {noded.get()};

@@ -211,8 +211,11 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
   if (!options.roadsOnly) {
     const auto t0 = std::chrono::steady_clock::now();
     resetPeakMemory();
-    result.city = vectorizeCity(result.network, result.cells, result.blocks, result.parcels, input.spec,
-                                options.city, subProgress(progress, 0.3, 1.0));
+    CityOptions city = options.city;
+    city.blocks.external.waterIsUndeveloped = options.perimeters.waterIsUndeveloped;
+    city.blocks.external.reservedIsUndeveloped = options.perimeters.reservedIsUndeveloped;
+    result.city = vectorizeCity(result.network, result.cells, result.blocks, result.parcels, input.spec, city,
+                                subProgress(progress, 0.3, 1.0));
     StageReport report;
     report.id = "C-E";
     report.name = "pavement, blocks, spines, parcels";

@@ -142,6 +142,21 @@ TEST(Perimeters, ReservedLandAlongTheEdgeDoesNotCutTheLine) {
   PerimeterOptions reservedDeveloped;
   reservedDeveloped.reservedIsUndeveloped = false;
   EXPECT_EQ(addExternalPerimeters(split, cells, rb.blockOf, rb.blocks, reservedDeveloped).lines, 2u);
+  // Reserved patches inside a block (when A2 keeps them in blocks) are land of that block, not open
+  // land: no line around them.
+  auto inner = drawGrid({
+      ".........",
+      "rrrxxrrrr",
+      "rrrxxrrrr",
+      "sssssssss",
+  });
+  RawBlockOptions keepReserved;
+  keepReserved.excludeReserved = false;
+  const RawBlocks kept = buildRawBlocks(inner, keepReserved);
+  RoadGraph g2;
+  const PerimeterStats s2 = addExternalPerimeters(g2, inner, kept.blockOf, kept.blocks, {});
+  EXPECT_EQ(s2.lines, 1u);
+  EXPECT_EQ(s2.closedLoops, 0u);
 }
 
 TEST(ParcelLoading, ParcelsJoinTheBlockOfTheirFirstPatchAndTakeTableValues) {
