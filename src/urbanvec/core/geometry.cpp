@@ -1,5 +1,8 @@
 #include "urbanvec/core/geometry.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace urbanvec {
 
 double signedArea(const Ring& ring) {
@@ -25,6 +28,18 @@ double length(const LineString& line) {
   double l = 0.0;
   for (size_t i = 0; i + 1 < line.size(); ++i) l += distance(line[i], line[i + 1]);
   return l;
+}
+
+LineString densified(const LineString& line, double spacing) {
+  if (line.size() < 2) return line;
+  LineString dense;
+  for (size_t i = 0; i + 1 < line.size(); ++i) {
+    const int steps =
+        std::max(1, static_cast<int>(std::ceil(distance(line[i], line[i + 1]) / spacing - 1e-9)));
+    for (int k = 0; k < steps; ++k) dense.push_back(line[i] + (line[i + 1] - line[i]) * (double(k) / steps));
+  }
+  dense.push_back(line.back());
+  return dense;
 }
 
 }  // namespace urbanvec

@@ -60,5 +60,7 @@ double area(const Polygon& polygon);
 double area(const MultiPolygon& polygons);
 /// Length of a line string.
 double length(const LineString& line);
+/// The line with points added so that no step is longer than `spacing` (a closed ring stays closed).
+LineString densified(const LineString& line, double spacing);
 
 }  // namespace urbanvec

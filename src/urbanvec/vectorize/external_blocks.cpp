@@ -15,19 +15,6 @@ namespace urbanvec::vectorize {
 
 namespace {
 
-/// The line with extra points so that no step is longer than `spacing`.
-LineString densified(const LineString& line, double spacing) {
-  if (line.size() < 2) return line;
-  LineString dense;
-  for (size_t i = 0; i + 1 < line.size(); ++i) {
-    const int steps =
-        std::max(1, static_cast<int>(std::ceil(distance(line[i], line[i + 1]) / spacing - 1e-9)));
-    for (int k = 0; k < steps; ++k) dense.push_back(line[i] + (line[i + 1] - line[i]) * (double(k) / steps));
-  }
-  dense.push_back(line.back());
-  return dense;
-}
-
 /// Q8 smoothing of a boundary line: resample to `spacing`, then average every inner point with its
 /// two neighbours `passes` times; the end points (where the line meets the road) stay put.
 LineString smoothBoundaryLine(const LineString& line, int passes, double spacing) {
@@ -38,21 +25,6 @@ LineString smoothBoundaryLine(const LineString& line, int passes, double spacing
     for (size_t i = 1; i + 1 < dense.size(); ++i) next[i] = (dense[i - 1] + dense[i] + dense[i + 1]) / 3.0;
     dense = std::move(next);
   }
-  return dense;
-}
-
-/// Q8 smoothing of a closed ring (first point repeated at the end), every point averaged cyclically.
-Ring smoothClosedRing(const Ring& ring, int passes, double spacing) {
-  if (passes <= 0 || ring.size() < 4) return ring;
-  LineString dense = densified(ring, spacing);
-  dense.pop_back();
-  const size_t n = dense.size();
-  for (int pass = 0; pass < passes; ++pass) {
-    LineString next = dense;
-    for (size_t i = 0; i < n; ++i) next[i] = (dense[(i + n - 1) % n] + dense[i] + dense[(i + 1) % n]) / 3.0;
-    dense = std::move(next);
-  }
-  dense.push_back(dense.front());
   return dense;
 }
 
@@ -225,11 +197,13 @@ void addIslandBlocks(const geos::Context& ctx, const SimulatedCity& city, const 
     geos::GeomPtr cells = unionOnGrid(ctx, std::move(squares), options.precisionGrid);
     if (covered(cells.get())) continue;
     for (const Polygon& part : ctx.toPolygons(cells.get())) {
-      Polygon smooth{
-          smoothClosedRing(part.outer, options.boundarySmoothingPasses, options.boundaryResampleSpacing), {}};
-      for (const Ring& hole : part.holes)
-        smooth.holes.push_back(
-            smoothClosedRing(hole, options.boundarySmoothingPasses, options.boundaryResampleSpacing));
+      auto smoothed = [&](const Ring& ring) {
+        return options.boundarySmoothingPasses > 0
+                   ? smoothClosedRing(ring, options.boundarySmoothingPasses, options.boundaryResampleSpacing)
+                   : ring;
+      };
+      Polygon smooth{smoothed(part.outer), {}};
+      for (const Ring& hole : part.holes) smooth.holes.push_back(smoothed(hole));
       geos::GeomPtr valid = ctx.own(GEOSMakeValid_r(ctx.handle(), ctx.polygon(smooth).get()), "make valid");
       for (Polygon& piece : ctx.toPolygons(valid.get())) {
         if (area(piece) <= 0.0) continue;

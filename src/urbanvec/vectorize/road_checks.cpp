@@ -106,41 +106,10 @@ bool nearInterior(const Vec2& p, const Vec2& a, const Vec2& b) {
   return std::fabs(cross(ab, p - a)) / std::sqrt(len2) <= eps;
 }
 
-/// Sets mask[cell] = 1 for every cell whose centre lies within r of segment ab (internal frame). Scans
-/// row by row only the columns the capsule around ab can reach, so the cost is about the capsule's
-/// area in cells.
+/// Sets mask[cell] = 1 for every cell whose centre lies within r of segment ab (internal frame).
 void markWithin(std::vector<std::uint8_t>& mask, int w, int h, const Vec2& a, const Vec2& b, double r) {
-  const double r2 = (r + 1e-9) * (r + 1e-9);  // a centre at r up to rounding counts as within
-  const Vec2 ab = b - a;
-  const double len2 = dot(ab, ab);
-  // Cell (c, row) has its centre at (c + 0.5, h - row - 0.5).
-  const double yLo = std::min(a.y, b.y) - r, yHi = std::max(a.y, b.y) + r;
-  const int rowFirst = std::max(0, static_cast<int>(std::ceil(h - 0.5 - yHi - 1e-9)));
-  const int rowLast = std::min(h - 1, static_cast<int>(std::floor(h - 0.5 - yLo + 1e-9)));
-  for (int row = rowFirst; row <= rowLast; ++row) {
-    const double yc = h - row - 0.5;
-    // The part of ab within r of this row's centre line, widened by r, bounds the columns.
-    double t0 = 0, t1 = 1;
-    if (ab.y != 0) {
-      t0 = (yc - r - a.y) / ab.y;
-      t1 = (yc + r - a.y) / ab.y;
-      if (t0 > t1) std::swap(t0, t1);
-      t0 = std::max(0.0, t0);
-      t1 = std::min(1.0, t1);
-      if (t0 > t1) continue;
-    }
-    const double x0 = a.x + ab.x * t0, x1 = a.x + ab.x * t1;
-    const int colFirst = std::max(0, static_cast<int>(std::ceil(std::min(x0, x1) - r - 0.5 - 1e-9)));
-    const int colLast = std::min(w - 1, static_cast<int>(std::floor(std::max(x0, x1) + r - 0.5 + 1e-9)));
-    for (int col = colFirst; col <= colLast; ++col) {
-      std::uint8_t& m = mask[static_cast<size_t>(row) * w + col];
-      if (m) continue;
-      const Vec2 p(col + 0.5, yc);
-      const double t = len2 > 0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
-      const Vec2 d = p - (a + ab * t);
-      if (dot(d, d) <= r2) m = 1;
-    }
-  }
+  forEachCellNearSegment(w, h, a, b, r,
+                         [&](int col, int row, double) { mask[static_cast<size_t>(row) * w + col] = 1; });
 }
 
 struct PointHash {
@@ -356,26 +325,13 @@ std::size_t restoreUncoveringSegments(RoadNetwork& simplified, const RoadNetwork
     const NetworkSegment& s = exact.segments[k];
     if (s.roadClass == RoadClass::Perimeter || simplified.segments[k].points == s.points) continue;
     std::vector<size_t> touched;
-    for (size_t j = 0; j + 1 < s.points.size(); ++j) {
-      // markWithin only sets cells, so collect what this segment newly marks and clear it afterwards.
-      const Vec2 a = s.points[j], b = s.points[j + 1];
-      const double yLo = std::min(a.y, b.y) - maxDistance, yHi = std::max(a.y, b.y) + maxDistance;
-      const double xLo = std::min(a.x, b.x) - maxDistance, xHi = std::max(a.x, b.x) + maxDistance;
-      const int rowFirst = std::max(0, static_cast<int>(std::floor(h - 0.5 - yHi)));
-      const int rowLast = std::min(h - 1, static_cast<int>(std::ceil(h - 0.5 - yLo)));
-      const int colFirst = std::max(0, static_cast<int>(std::floor(xLo - 0.5)));
-      const int colLast = std::min(w - 1, static_cast<int>(std::ceil(xHi - 0.5)));
-      for (int row = rowFirst; row <= rowLast; ++row)
-        for (int col = colFirst; col <= colLast; ++col) {
-          const size_t i = static_cast<size_t>(row) * w + col;
-          if (!lost[i] || near[i]) continue;
-          const Vec2 centre(col + 0.5, h - row - 0.5);
-          if (distanceToSegment(centre, a, b) <= maxDistance + 1e-9) {
-            near[i] = 1;
-            touched.push_back(i);
-          }
-        }
-    }
+    for (size_t j = 0; j + 1 < s.points.size(); ++j)
+      forEachCellNearSegment(w, h, s.points[j], s.points[j + 1], maxDistance, [&](int col, int row, double) {
+        const size_t i = static_cast<size_t>(row) * w + col;
+        if (!lost[i] || near[i]) return;
+        near[i] = 1;
+        touched.push_back(i);
+      });
     if (!touched.empty()) {
       // The coarsest of half, a quarter of the tolerance, or none, that covers the cells again.
       LineString line = s.points;

@@ -7,7 +7,10 @@
 // are spec.transform.pixelToWorld(x, H - y) for the grid's GridSpec.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "urbanvec/core/geometry.hpp"
@@ -82,6 +85,43 @@ struct SimulatedCity {
   std::vector<SimulatedBlock> blocks;
   std::vector<SimulatedParcel> parcels;
 };
+
+/// Calls f(col, row, distance) for every cell of a w x h grid whose centre (col + 0.5, h - row - 0.5)
+/// lies within r of segment ab (internal frame; a centre at r up to rounding counts as within). Scans
+/// row by row only the columns the capsule around ab can reach, so the cost is about the capsule's
+/// area in cells.
+template <class F>
+void forEachCellNearSegment(int w, int h, const Vec2& a, const Vec2& b, double r, F f) {
+  const double r2 = (r + 1e-9) * (r + 1e-9);
+  const Vec2 ab = b - a;
+  const double len2 = dot(ab, ab);
+  const double yLo = std::min(a.y, b.y) - r, yHi = std::max(a.y, b.y) + r;
+  const int rowFirst = std::max(0, static_cast<int>(std::ceil(h - 0.5 - yHi - 1e-9)));
+  const int rowLast = std::min(h - 1, static_cast<int>(std::floor(h - 0.5 - yLo + 1e-9)));
+  for (int row = rowFirst; row <= rowLast; ++row) {
+    const double yc = h - row - 0.5;
+    // The part of ab within r of this row's centre line, widened by r, bounds the columns.
+    double t0 = 0, t1 = 1;
+    if (ab.y != 0) {
+      t0 = (yc - r - a.y) / ab.y;
+      t1 = (yc + r - a.y) / ab.y;
+      if (t0 > t1) std::swap(t0, t1);
+      t0 = std::max(0.0, t0);
+      t1 = std::min(1.0, t1);
+      if (t0 > t1) continue;
+    }
+    const double x0 = a.x + ab.x * t0, x1 = a.x + ab.x * t1;
+    const int colFirst = std::max(0, static_cast<int>(std::ceil(std::min(x0, x1) - r - 0.5 - 1e-9)));
+    const int colLast = std::min(w - 1, static_cast<int>(std::floor(std::max(x0, x1) + r - 0.5 + 1e-9)));
+    for (int col = colFirst; col <= colLast; ++col) {
+      const Vec2 p(col + 0.5, yc);
+      const double t = len2 > 0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+      const Vec2 d = p - (a + ab * t);
+      const double d2 = dot(d, d);
+      if (d2 <= r2) f(col, row, std::sqrt(d2));
+    }
+  }
+}
 
 /// Internal frame (x = col, y = H - row, pw) to world coordinates through the geotransform; correct
 /// for north-up, south-up and rotated transforms alike.

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "urbanvec/core/geometry.hpp"
+#include "urbanvec/vectorize/road_network.hpp"
 #include "urbanvec/vectorize/straightening.hpp"
 #include "urbanvec/vectorize/vectorize_input.hpp"
 
@@ -102,18 +103,10 @@ void undoUncoveringMoves(const RoadGraph& graph, const std::vector<char>& movabl
     for (int j : graph.nodes[i].links) {
       if (graph.nodes[j].type == NodeType::Perimeter) continue;
       const Vec2 a = old[i], b = old[static_cast<size_t>(j)];
-      const int colFirst = std::max(0, static_cast<int>(std::floor(std::min(a.x, b.x) - radius - 0.5)));
-      const int colLast =
-          std::min(cells.width - 1, static_cast<int>(std::ceil(std::max(a.x, b.x) + radius - 0.5)));
-      const int rowFirst = std::max(0, static_cast<int>(std::floor(h - 0.5 - std::max(a.y, b.y) - radius)));
-      const int rowLast = std::min(h - 1, static_cast<int>(std::ceil(h - 0.5 - std::min(a.y, b.y) + radius)));
-      for (int row = rowFirst; row <= rowLast; ++row)
-        for (int col = colFirst; col <= colLast; ++col)
-          if (isRoadCode(cells.at(col, row))) {
-            const double d = distanceToSegment(Vec2(col + 0.5, h - row - 0.5), a, b);
-            if (d <= r && d + largest > r)
-              candidates.push_back(static_cast<std::int64_t>(row) * cells.width + col);
-          }
+      forEachCellNearSegment(cells.width, h, a, b, radius, [&](int col, int row, double d) {
+        if (isRoadCode(cells.at(col, row)) && d + largest > r)
+          candidates.push_back(static_cast<std::int64_t>(row) * cells.width + col);
+      });
     }
   }
   std::sort(candidates.begin(), candidates.end());

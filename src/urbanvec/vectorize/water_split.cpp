@@ -15,17 +15,6 @@ namespace urbanvec::vectorize {
 
 namespace {
 
-/// Resamples a closed ring so that no edge is longer than `spacing`.
-Ring resample(const Ring& ring, double spacing) {
-  Ring out;
-  for (size_t i = 0; i + 1 < ring.size(); ++i) {
-    const Vec2 a = ring[i], b = ring[i + 1];
-    const int steps = std::max(1, static_cast<int>(std::ceil(distance(a, b) / spacing - 1e-9)));
-    for (int k = 0; k < steps; ++k) out.push_back(a + (b - a) * (static_cast<double>(k) / steps));
-  }
-  return out;  // open: the closing point is implied
-}
-
 /// A water outline vertex stays put where the water chain inside simulated land ends: on the grid
 /// border or against a road cell (spec D2 "endpoints fixed where the chain ends"). Without this the
 /// averaging would pull water away from the curbs and leave land bridges that stop the split.
@@ -42,26 +31,29 @@ bool chainEnd(const Vec2& p, const Grid<LandUse>& landUse) {
   return false;
 }
 
-/// Neighbour averaging of an open-stored closed ring (returned closed), chain ends fixed.
-Ring smooth(Ring ring, int passes, const Grid<LandUse>& landUse) {
-  const size_t n = ring.size();
+}  // namespace
+
+Ring smoothClosedRing(const Ring& ring, int passes, double spacing,
+                      const std::function<bool(const Vec2&)>& fixedVertex) {
+  Ring open = densified(ring, spacing);
+  if (!open.empty()) open.pop_back();  // the closing point is implied while averaging
+  const size_t n = open.size();
   if (n < 4) {
-    if (!ring.empty()) ring.push_back(ring.front());
-    return ring;
+    if (!open.empty()) open.push_back(open.front());
+    return open;
   }
-  std::vector<bool> fixed(n);
-  for (size_t i = 0; i < n; ++i) fixed[i] = chainEnd(ring[i], landUse);
+  std::vector<bool> fixed(n, false);
+  if (fixedVertex)
+    for (size_t i = 0; i < n; ++i) fixed[i] = fixedVertex(open[i]);
   for (int pass = 0; pass < passes; ++pass) {
     Ring next(n);
     for (size_t i = 0; i < n; ++i)
-      next[i] = fixed[i] ? ring[i] : (ring[(i + n - 1) % n] + ring[i] + ring[(i + 1) % n]) / 3.0;
-    ring = std::move(next);
+      next[i] = fixed[i] ? open[i] : (open[(i + n - 1) % n] + open[i] + open[(i + 1) % n]) / 3.0;
+    open = std::move(next);
   }
-  ring.push_back(ring.front());
-  return ring;
+  open.push_back(open.front());
+  return open;
 }
-
-}  // namespace
 
 Grid<int> simulatedBlockOfCells(const SimulatedCity& city) {
   Grid<int> owner(city.grid.width, city.grid.height, -1);
@@ -169,9 +161,11 @@ MultiPolygon waterPolygons(const Grid<LandUse>& landUse, const WaterSplitOptions
   std::vector<geos::GeomPtr> smoothed;
   for (const Polygon& p : ctx.toPolygons(cells.get())) {
     Polygon s;
-    s.outer = smooth(resample(p.outer, options.resampleSpacing), options.smoothingPasses, landUse);
+    auto chainEndOnGrid = [&](const Vec2& v) { return chainEnd(v, landUse); };
+    s.outer = smoothClosedRing(p.outer, options.smoothingPasses, options.resampleSpacing, chainEndOnGrid);
     for (const Ring& hole : p.holes)
-      s.holes.push_back(smooth(resample(hole, options.resampleSpacing), options.smoothingPasses, landUse));
+      s.holes.push_back(
+          smoothClosedRing(hole, options.smoothingPasses, options.resampleSpacing, chainEndOnGrid));
     geos::GeomPtr g = ctx.polygon(s);
     // Averaging can pinch narrow channels into self-touching rings; make them valid.
     if (GEOSisValid_r(ctx.handle(), g.get()) != 1)

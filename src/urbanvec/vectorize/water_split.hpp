@@ -9,6 +9,7 @@
 // spec §0 (cells).
 #pragma once
 
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -38,6 +39,13 @@ Grid<int> simulatedBlockOfCells(const SimulatedCity& city);
 
 /// The cell containing a point of the internal frame, as (col, row); may lie off the grid.
 GridCell cellAt(const Vec2& p, int gridHeight);
+
+/// Q8-style smoothing of a closed ring (first point repeated at the end): resampled so no edge is
+/// longer than `spacing`, then every vertex averaged with its two neighbours `passes` times, cyclically,
+/// except the vertices `fixedVertex` holds in place. Returned closed. Used for water outlines (chain
+/// ends fixed, D2) and island blocks (D4).
+Ring smoothClosedRing(const Ring& ring, int passes, double spacing,
+                      const std::function<bool(const Vec2&)>& fixedVertex = {});
 /// Centre of a cell in the internal frame.
 Vec2 cellCentre(const GridCell& cell, int gridHeight);
 
