@@ -77,6 +77,10 @@ BlockMatching matchSimulatedBlocks(const std::vector<Polygon>& vectorBlocks, con
     }
     if (block.cells.empty() || vectorBlocks.empty()) continue;
     const Vec2 c = block.centre;
+    // A deterministic, even sample of the block's cells, for the share and overlap rules.
+    const size_t n = block.cells.size();
+    const size_t counted = std::min(n, static_cast<size_t>(std::max(1, options.maxCellsCounted)));
+    auto sampled = [&](size_t k) { return block.cells[k * n / counted]; };
     int v = -1;
     MatchRule rule = MatchRule::None;
     if (ownCell(c, b)) {
@@ -100,12 +104,10 @@ BlockMatching matchSimulatedBlocks(const std::vector<Polygon>& vectorBlocks, con
       rule = MatchRule::ParcelCentre;
     }
     if (v >= 0 && options.minShareOfCells > 0.0 && block.cells.size() > 1) {
-      // Where a deterministic, even sample of the block's cells lies.
-      const size_t n = block.cells.size();
-      const size_t counted = std::min(n, static_cast<size_t>(std::max(1, options.maxCellsCounted)));
+      // Where the sampled cells lie.
       std::map<int, size_t> cellsIn;
       for (size_t k = 0; k < counted; ++k) {
-        const int w = locate(cellCentre(block.cells[k * n / counted], h));
+        const int w = locate(cellCentre(sampled(k), h));
         if (w >= 0) ++cellsIn[w];
       }
       const size_t picked = cellsIn.count(v) ? cellsIn[v] : 0;
@@ -135,11 +137,9 @@ BlockMatching matchSimulatedBlocks(const std::vector<Polygon>& vectorBlocks, con
     if (v < 0 && options.matchByCellOverlap) {
       // No cell centre lies in a vector block; the land still overlapping one went there.
       // Each candidate is clipped once to the cells' box, so a cell meets a small piece, not a city.
-      const size_t n = block.cells.size();
-      const size_t counted = std::min(n, static_cast<size_t>(std::max(1, options.maxCellsCounted)));
       double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
       for (size_t k = 0; k < counted; ++k) {
-        const GridCell cell = block.cells[k * n / counted];
+        const GridCell cell = sampled(k);
         x0 = std::min(x0, static_cast<double>(cell.col));
         x1 = std::max(x1, cell.col + 1.0);
         y0 = std::min(y0, h - cell.row - 1.0);
@@ -155,7 +155,7 @@ BlockMatching matchSimulatedBlocks(const std::vector<Polygon>& vectorBlocks, con
         geos::GeomPtr piece = ctx.own(clipped, "clip");
         double area = 0.0;
         for (size_t k = 0; k < counted; ++k) {
-          const GridCell cell = block.cells[k * n / counted];
+          const GridCell cell = sampled(k);
           const double cx = cell.col, cy = h - cell.row - 1.0;
           GEOSGeometry* part = GEOSClipByRect_r(ctx.handle(), piece.get(), cx, cy, cx + 1, cy + 1);
           if (!part) continue;
