@@ -125,26 +125,34 @@ TEST(Perimeters, LinesRunBetweenUndevelopedLandAndExternalBlocksAndEndAtRoads) {
   for (const RoadNode& n : g.nodes) EXPECT_EQ(n.type, NodeType::Perimeter);
 }
 
+namespace {
+
+/// A4.8 on the raw blocks of `cells`.
+PerimeterStats perimetersOf(const Grid<std::uint8_t>& cells, const RawBlockOptions& raw = {},
+                            const PerimeterOptions& options = {}) {
+  const RawBlocks rb = buildRawBlocks(cells, raw);
+  RoadGraph g;
+  return addExternalPerimeters(g, cells, rb.blockOf, rb.blocks, options);
+}
+
+}  // namespace
+
 TEST(Perimeters, ReservedLandAlongTheEdgeDoesNotCutTheLine) {
   // The external block's edge to the open land passes reserved patches (x) halfway along: one line
   // still runs from road to road, around the reserved patches, unless they count as developed.
-  auto cells = drawGrid({
+  const auto cells = drawGrid({
       "....xx...",
       "rrrrrrrrr",
       "rrrrrrrrr",
       "sssssssss",
   });
-  const RawBlocks rb = buildRawBlocks(cells, {});
-  RoadGraph g;
-  const PerimeterStats s = addExternalPerimeters(g, cells, rb.blockOf, rb.blocks, {});
-  EXPECT_EQ(s.lines, 1u);
-  RoadGraph split;
+  EXPECT_EQ(perimetersOf(cells).lines, 1u);
   PerimeterOptions reservedDeveloped;
   reservedDeveloped.reservedIsUndeveloped = false;
-  EXPECT_EQ(addExternalPerimeters(split, cells, rb.blockOf, rb.blocks, reservedDeveloped).lines, 2u);
+  EXPECT_EQ(perimetersOf(cells, {}, reservedDeveloped).lines, 2u);
   // Reserved patches inside a block (when A2 keeps them in blocks) are land of that block, not open
   // land: no line around them.
-  auto inner = drawGrid({
+  const auto inner = drawGrid({
       ".........",
       "rrrxxrrrr",
       "rrrxxrrrr",
@@ -152,11 +160,9 @@ TEST(Perimeters, ReservedLandAlongTheEdgeDoesNotCutTheLine) {
   });
   RawBlockOptions keepReserved;
   keepReserved.excludeReserved = false;
-  const RawBlocks kept = buildRawBlocks(inner, keepReserved);
-  RoadGraph g2;
-  const PerimeterStats s2 = addExternalPerimeters(g2, inner, kept.blockOf, kept.blocks, {});
-  EXPECT_EQ(s2.lines, 1u);
-  EXPECT_EQ(s2.closedLoops, 0u);
+  const PerimeterStats s = perimetersOf(inner, keepReserved);
+  EXPECT_EQ(s.lines, 1u);
+  EXPECT_EQ(s.closedLoops, 0u);
 }
 
 TEST(ParcelLoading, ParcelsJoinTheBlockOfTheirFirstPatchAndTakeTableValues) {
