@@ -138,6 +138,15 @@ app::CommandSpec spec() {
                   .atLeast(90)
                   .atMost(180)
                   .isAdvanced());
+  o.push_back(option("-no-patch-cleaning", ValueType::Flag, "",
+                     "Skip the extraneous intersection patch cleaning (A3): keep the secondary strips "
+                     "beside primary roads.")
+                  .isAdvanced());
+  o.push_back(option("-keep-all-roads", ValueType::Flag, "",
+                     "Keep every road of the grid: no patch cleaning (A3), no short-cycle removal (B4), "
+                     "no dead-end removal (B5); for grids rasterized from mapped streets. Not with "
+                     "-cycle-nodes or -dead-end-angle.")
+                  .isAdvanced());
   o.push_back(option("-cycle-nodes", ValueType::Integer, "<n>",
                      "Road cycles of at most this many nodes lose a segment (B4).")
                   .byDefault(app::numberText(d.cycles.maxCycleNodes))
@@ -211,6 +220,16 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   options.curves.reach = options.roadSmoothing.reach;
   options.cycles.maxCycleNodes = static_cast<int>(args.integer("-cycle-nodes"));
   options.intersections.deadEndAngle = args.real("-dead-end-angle");
+  options.cleanIntersectionPatches = !args.flag("-no-patch-cleaning");
+  if (args.flag("-keep-all-roads")) {
+    for (const char* removal : {"-cycle-nodes", "-dead-end-angle"})
+      if (args.given(removal))
+        throw invalidOption(std::string("-keep-all-roads switches the road removals off; do not give ") +
+                            removal + " with it");
+    options.cleanIntersectionPatches = false;
+    options.cycles.maxCycleNodes = 0;
+    options.intersections.deadEndAngle = 0.0;
+  }
   options.intersections.primaryDistance = args.real("-primary-close");
   options.intersections.secondaryDistance = args.real("-secondary-close");
   options.curves.passes = static_cast<int>(args.integer("-curve-passes"));

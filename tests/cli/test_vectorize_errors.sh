@@ -94,6 +94,12 @@ raster "$WORK/one.tif" Byte 1 1 '4' "${SRS[@]}"
 expect_warning "Warning: the land-use grid has no road cells (codes 2 and 3): the road layers are empty" "$WORK/one.tif"
 rm -f "$O"
 
+# -keep-all-roads switches B4 and B5 removal off: giving their thresholds as well is refused.
+expect_failure 1 "ERROR: -keep-all-roads switches the road removals off; do not give -cycle-nodes with it" \
+  -keep-all-roads -cycle-nodes 12 "$WORK/town.tif"
+expect_failure 1 "ERROR: -keep-all-roads switches the road removals off; do not give -dead-end-angle with it" \
+  -keep-all-roads -dead-end-angle 45 "$WORK/town.tif"
+
 # A float raster whose values are not class codes is refused, pointing at -classes; with a -classes
 # table it works, and a table that misses a value names it. Float cells holding whole codes are fine.
 raster "$WORK/float.tif" Float32 13 13 '(r == 3 || r == 9 || c == 3 || c == 9) ? 0.25 : 0.75' "${SRS[@]}"

@@ -214,10 +214,14 @@ Layer makeLayer(const std::string& name, GeometryType type, std::vector<FieldDef
 
 parcels::SimBlockSummary summarizeSimulatedBlocks(const std::vector<int>& simBlockIndices,
                                                   const std::vector<SimBlock>& blocks,
-                                                  const std::vector<SimParcel>& parcels) {
+                                                  const std::vector<SimParcel>& parcels,
+                                                  const Grid<std::uint8_t>& cells) {
   parcels::SimBlockSummary summary;
+  summary.useArea.assign(256, 0.0);
   for (int index : simBlockIndices) {
     const SimBlock& block = blocks.at(static_cast<size_t>(index));
+    for (std::int32_t patch : block.patches)
+      summary.useArea[cells.cells.at(static_cast<size_t>(patch))] += 1.0;
     summary.area += block.area;
     summary.developedArea += block.developedArea;
     summary.undevelopedArea += block.undevelopedArea;
@@ -255,7 +259,7 @@ CityResult vectorizeCity(const RoadNetwork& network, const Grid<std::uint8_t>& c
     block.roadFacing = facing[i];
     block.obbAspect = info.obb.aspect;
     block.obbDiagonal = info.obb.diagonal;
-    block.sim = summarizeSimulatedBlocks(info.simBlockIndices, blocks, simParcels);
+    block.sim = summarizeSimulatedBlocks(info.simBlockIndices, blocks, simParcels, cells);
     result.parcelBlocks.push_back(std::move(block));
   }
   result.parcels =

@@ -37,7 +37,8 @@ struct CityResult {
 /// The simulated side of one vector block: its matched simulated blocks merged (spec D5).
 parcels::SimBlockSummary summarizeSimulatedBlocks(const std::vector<int>& simBlockIndices,
                                                   const std::vector<SimBlock>& blocks,
-                                                  const std::vector<SimParcel>& parcels);
+                                                  const std::vector<SimParcel>& parcels,
+                                                  const Grid<std::uint8_t>& cells);
 
 /// Runs C -> D5 then D6 -> E6 on part 1's output. `cells`, `blocks` and `simParcels` are
 /// VectorizeResult's A2-A5 data; `network` its road network; `grid` the input frame.

@@ -6,6 +6,7 @@
 #include <array>
 #include <vector>
 
+#include "urbanvec/core/grid.hpp"
 #include "urbanvec/core/progress.hpp"
 #include "urbanvec/vectorize/road_graph.hpp"
 
@@ -26,6 +27,12 @@ struct IntersectionSimplificationOptions {
   double primaryDistance = 1.0;
   /// Secondary nodes closer than this to an intersection are contracted into it, in pw.
   double secondaryDistance = 0.5;
+  /// [INFERENCE, beyond the documents] When set (LandUse codes after A3/A4), a contraction that left a
+  /// road cell farther than `coverRadius` pw from every road link is undone (the node goes back on
+  /// the links it had): in wide secondary areas, chains of contractions can pull the roads off the
+  /// fringe cells, as smoothing can (RoadSmoothingOptions::coverCells). nullptr = the documents' rule.
+  const Grid<std::uint8_t>* coverCells = nullptr;
+  double coverRadius = 1.5;
 };
 
 struct IntersectionSimplificationStats {
@@ -34,6 +41,7 @@ struct IntersectionSimplificationStats {
   std::vector<std::array<Vec2, 2>> removedLinks;
   std::size_t nodesContracted = 0;
   std::size_t intersectionsMerged = 0;
+  std::size_t contractionsUndone = 0;  ///< to keep road cells covered (coverCells)
 };
 
 IntersectionSimplificationStats simplifyIntersections(RoadGraph& graph,

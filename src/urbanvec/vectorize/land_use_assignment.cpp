@@ -37,8 +37,10 @@ UseModel buildUseModel(const SimBlockSummary& sim, const LandUseOptions& options
     const int i = model.indexOf(p.use);
     if (i < 0) continue;
     model.parcelsOfUse[i].push_back(&p);
-    useArea[i] += p.cells;
+    if (sim.useArea.empty()) useArea[i] += p.cells;
   }
+  if (!sim.useArea.empty())
+    for (size_t i = 0; i < n; ++i) useArea[i] = sim.useArea.at(static_cast<size_t>(model.uses[i]));
   const double undevShare = sim.area > 0.0 ? sim.undevelopedArea / sim.area : 0.0;
   model.undevelopedActive = undevShare >= options.undevelopedSwitch;
   // Eq. 3.3: shares of developed land below the switch, of all land at or above it.

@@ -30,6 +30,10 @@ struct SimBlockSummary {
   double area = 0.0;             ///< patches of the simulated block(s), cells²
   double developedArea = 0.0;    ///< patches with a developed use (residential..park), cells²
   double undevelopedArea = 0.0;  ///< unused patches inside the block, cells²
+  /// Patches of the block(s) per land-use code, cells²; the use shares of Eq. 3.3. Empty = the
+  /// parcels' cells stand in (a parcel's cells can lie partly in other blocks, so they only do when
+  /// every parcel lies wholly inside).
+  std::vector<double> useArea;
   std::vector<SimParcel> parcels;
 };
 

@@ -115,7 +115,8 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
     return counts(result.blocks.size(), " blocks (", internal, " internal)");
   });
   run("A3", "patch cleaning", 0.05, false, [&](const Progress& p) {
-    const PatchCleaningStats s = cleanIntersectionPatches(result.cells, p);
+    if (!options.cleanIntersectionPatches) return std::string("skipped (every secondary patch kept)");
+    const PatchCleaningStats s = cleanIntersectionPatches(result.cells, p, options.patchCleaning);
     return counts(s.searches, " clusters searched, ", s.removedPatches, " patches removed");
   });
   run("A4", "road graph", 0.2, true, [&](const Progress& p) {
@@ -170,10 +171,13 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
                   s.rounds, " rounds, ", s.developedFacesKept, " faces around developed land kept");
   });
   run("B5", "intersection simplification", 0.05, true, [&](const Progress& p) {
-    IntersectionSimplificationStats s = simplifyIntersections(graph, options.intersections, p);
+    IntersectionSimplificationOptions simplification = options.intersections;
+    if (options.keepRoadCellsCovered) simplification.coverCells = &result.cells;
+    IntersectionSimplificationStats s = simplifyIntersections(graph, simplification, p);
     result.deadEndRemovedLinks = std::move(s.removedLinks);
-    return counts(s.deadEndsRemoved, " dead ends removed, ", s.nodesContracted, " nodes contracted, ",
-                  s.intersectionsMerged, " intersections merged");
+    return counts(s.deadEndsRemoved, " dead ends removed, ", s.nodesContracted, " nodes contracted (",
+                  s.contractionsUndone, " undone to keep road cells covered), ", s.intersectionsMerged,
+                  " intersections merged");
   });
   run("B6", "curve smoothing", 0.12, true, [&](const Progress& p) {
     CurveSmoothingOptions curves = options.curves;

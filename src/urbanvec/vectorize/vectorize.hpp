@@ -28,6 +28,12 @@ namespace urbanvec::vectorize {
 
 struct VectorizeOptions {
   RawBlockOptions rawBlocks;           ///< A2
+  /// A3 extraneous intersection patch cleaning. false keeps every secondary patch (beyond the
+  /// documents): on grids rasterized from mapped streets the strips A3 removes beside a primary are
+  /// mostly real service roads, slip roads and parallel carriageways (docs/vectorize.md, "Keeping
+  /// every road").
+  bool cleanIntersectionPatches = true;
+  PatchCleaningOptions patchCleaning;
   RoadGraphOptions roadGraph;          ///< A4.1–A4.7
   PerimeterOptions perimeters;         ///< A4.8
   StraighteningOptions straightening;  ///< B1

@@ -71,6 +71,27 @@ TEST(UseModel, SharesFollowEquation33) {
   EXPECT_NEAR(sum(model.simShare) + model.simUndevelopedShare, 1.0, 1e-9);
 }
 
+TEST(UseModel, SharesComeFromTheBlocksPatchesNotFromParcelsReachingIntoOtherBlocks) {
+  // A 10-patch block: 5 residential, 5 commercial patches. Its residential parcel has 95 more cells
+  // in blocks across a road (a plot the grid's roads cut), so its cell count says nothing of this
+  // block: the share is of the block's own patches.
+  SimBlockSummary sim;
+  sim.area = 10;
+  sim.developedArea = 10;
+  sim.useArea.assign(256, 0.0);
+  sim.useArea[static_cast<size_t>(LandUse::Residential)] = 5;
+  sim.useArea[static_cast<size_t>(LandUse::Commercial)] = 5;
+  sim.parcels = {{1, LandUse::Residential, 100, 30, {2, 2}}, {2, LandUse::Commercial, 5, 5, {6, 2}}};
+  const UseModel model = buildUseModel(sim, {});
+  ASSERT_EQ(model.simShare.size(), 2u);
+  EXPECT_DOUBLE_EQ(model.simShare[0], 0.5);
+  EXPECT_DOUBLE_EQ(model.simShare[1], 0.5);
+  // Half and half in the vector block costs nothing in cu (it cost 9.5 from the parcels' cells).
+  const std::vector<UseParcel> parcels = {{5.0, {2, 2}}, {5.0, {6, 2}}};
+  const std::vector<UseChoice> uses = {{false, LandUse::Residential}, {false, LandUse::Commercial}};
+  EXPECT_NEAR(scoreParcels(parcels, uses, 10.0, 10.0, model, sim, {}).use, 0.0, 1e-12);
+}
+
 TEST(LandUse, SingleUseFullyDevelopedBlockGetsThatUseEverywhere) {
   SimBlockSummary sim;
   sim.area = 30;

@@ -525,3 +525,37 @@ TEST(Smoothing, AMoveThatWouldUncoverARoadCellIsCutBack) {
   EXPECT_NEAR(g.nodes[3].p.y, 5.5 + 1.0 / 3.0, 1e-9);
   EXPECT_LE(distance(g.nodes[3].p, {5.5, 4.5}), 1.5);
 }
+
+TEST(IntersectionSimplification, AContractionThatWouldUncoverARoadCellIsUndone) {
+  // An intersection at (5.6, 5.5) with arms west, south and east-then-north: the east arm's first
+  // node lies 0.45 pw from the intersection, so B5 contracts it and links the intersection straight
+  // to (6.05, 9.5). The road cell centred at (7.5, 7.5) is 1.45 cells from the old arm and would be
+  // 1.67 from the new one.
+  auto graph = [] {
+    RoadGraph g;
+    const int x = g.addNode({5.6, 5.5}, NodeType::Secondary);
+    const int w = g.addNode({3.6, 5.5}, NodeType::Secondary), w2 = g.addNode({2.6, 5.5}, NodeType::Secondary);
+    const int s = g.addNode({5.6, 3.5}, NodeType::Secondary), s2 = g.addNode({5.6, 2.5}, NodeType::Secondary);
+    const int c = g.addNode({6.05, 5.5}, NodeType::Secondary),
+              o = g.addNode({6.05, 9.5}, NodeType::Secondary);
+    for (int arm : {w, s, c}) g.link(x, arm);
+    g.link(w, w2);
+    g.link(s, s2);
+    g.link(c, o);
+    return g;
+  };
+  Grid<std::uint8_t> cells(12, 12, 0);
+  cells.at(7, 4) = static_cast<std::uint8_t>(LandUse::SecondaryRoad);  // centre (7.5, 7.5)
+  RoadGraph literal = graph();
+  EXPECT_EQ(simplifyIntersections(literal, {}).nodesContracted, 1u);
+  EXPECT_GT(farthestRoadCell(cells, literal), 1.6);
+  RoadGraph guarded = graph();
+  IntersectionSimplificationOptions options;
+  options.coverCells = &cells;
+  const IntersectionSimplificationStats st = simplifyIntersections(guarded, options);
+  EXPECT_EQ(st.nodesContracted, 1u);
+  EXPECT_EQ(st.contractionsUndone, 1u);
+  EXPECT_NEAR(farthestRoadCell(cells, guarded), 1.45, 1e-9);
+  EXPECT_EQ(guarded.aliveCount(), 7u);
+  EXPECT_EQ(countDegree(guarded, 3), 1);
+}
