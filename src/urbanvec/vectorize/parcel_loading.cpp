@@ -1,5 +1,5 @@
-// Stage A5 (spec §3 A5), with the [INFERENCE] rule that a parcel whose first patch is in no block is
-// attached to nothing and counted.
+// Stage A5 (spec §3 A5), with the [INFERENCE] rule that a parcel whose block (first patch's, or the
+// majority's) is none is attached to nothing and counted.
 #include "urbanvec/vectorize/parcel_loading.hpp"
 
 #include <algorithm>
@@ -9,7 +9,8 @@
 namespace urbanvec::vectorize {
 
 ParcelLoading loadParcels(const VectorizeInput& input, const Grid<std::int32_t>& blockOf,
-                          std::vector<SimBlock>& blocks, const Progress& progress) {
+                          std::vector<SimBlock>& blocks, const Progress& progress,
+                          const ParcelLoadingOptions& options) {
   ParcelLoading out;
   const Grid<std::int32_t>& ids = input.parcelIds;
   if (ids.size() == 0) {
@@ -58,6 +59,26 @@ ParcelLoading loadParcels(const VectorizeInput& input, const Grid<std::int32_t>&
       ++out.derivedFromRaster;
     }
     p.simBlock = blockOf.cells[p.patches.front()];
+    if (options.majorityBlock) {
+      std::vector<std::int32_t> in;
+      in.reserve(p.patches.size());
+      for (int i : p.patches) in.push_back(blockOf.cells[i]);
+      std::sort(in.begin(), in.end());
+      const auto count = [&](std::int32_t block) {
+        const auto range = std::equal_range(in.begin(), in.end(), block);
+        return range.second - range.first;
+      };
+      // Strictly more patches than the first patch's block; among equals the lower block index.
+      auto most = count(p.simBlock);
+      for (auto run = in.begin(); run != in.end();) {
+        const auto end = std::upper_bound(run, in.end(), *run);
+        if (end - run > most) {
+          most = end - run;
+          p.simBlock = *run;
+        }
+        run = end;
+      }
+    }
     if (p.simBlock < 0) ++out.unattached;
   }
   std::sort(out.parcels.begin(), out.parcels.end(),

@@ -1,6 +1,6 @@
 // Stage A5 — parcel data loading (spec §3 A5; thesis §3.1.5, paper §3.1): simulated parcels from the
 // ownership raster and the per-parcel list, each attached to the simulated block holding its first
-// patch.
+// patch (the documents) or most of its patches (ParcelLoadingOptions::majorityBlock).
 #pragma once
 
 #include <vector>
@@ -10,9 +10,19 @@
 
 namespace urbanvec::vectorize {
 
+struct ParcelLoadingOptions {
+  /// [INFERENCE, beyond the documents] Attach a parcel to the block holding most of its patches ("no
+  /// block" counts as a candidate; ties go to the first patch's). The documents take the block of
+  /// the first patch: the same whenever a parcel lies in one block, as a simulator's parcels do. On
+  /// grids rasterized from real plots, roads split plots over several blocks, and the first patch's
+  /// block can hold a sliver of the plot while its whole use and population go there.
+  /// false = the first patch (the documents).
+  bool majorityBlock = true;
+};
+
 struct ParcelLoading {
   std::vector<SimParcel> parcels;     ///< ascending id
-  std::size_t unattached = 0;         ///< parcels whose first patch lies in no block (logged)
+  std::size_t unattached = 0;         ///< parcels attached to no block (logged)
   std::size_t derivedFromRaster = 0;  ///< parcels absent from the table, derived from the rasters
 };
 
@@ -20,6 +30,7 @@ struct ParcelLoading {
 /// the table lists the parcel; otherwise the majority land use of its patches and the density sum
 /// (spec §2.2 population source, A1 fallback).
 ParcelLoading loadParcels(const VectorizeInput& input, const Grid<std::int32_t>& blockOf,
-                          std::vector<SimBlock>& blocks, const Progress& progress = {});
+                          std::vector<SimBlock>& blocks, const Progress& progress = {},
+                          const ParcelLoadingOptions& options = {});
 
 }  // namespace urbanvec::vectorize

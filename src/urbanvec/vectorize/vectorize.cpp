@@ -136,12 +136,14 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
     return counts(s.lines, " perimeter lines, ", s.closedLoops, " closed loops skipped");
   });
   run("A5", "parcels", 0.03, false, [&](const Progress& p) {
-    ParcelLoading pl = loadParcels(input, result.blockOf, result.blocks, p);
+    ParcelLoading pl = loadParcels(input, result.blockOf, result.blocks, p, options.parcelLoading);
     result.parcels = std::move(pl.parcels);
     if (pl.unattached > 0)
       result.warnings.push_back(counts(pl.unattached,
-                                       " parcels have their first patch outside every block "
-                                       "(road, water, reserved, or open land beyond the external "
+                                       options.parcelLoading.majorityBlock
+                                           ? " parcels lie mostly outside every block"
+                                           : " parcels have their first patch outside every block",
+                                       " (road, water, reserved, or open land beyond the external "
                                        "blocks) and are attached to no block"));
     return counts(result.parcels.size(), " parcels, ", pl.unattached, " unattached, ", pl.derivedFromRaster,
                   " derived from the rasters");

@@ -36,6 +36,7 @@ struct VectorizeOptions {
   PatchCleaningOptions patchCleaning;
   RoadGraphOptions roadGraph;          ///< A4.1–A4.7
   PerimeterOptions perimeters;         ///< A4.8
+  ParcelLoadingOptions parcelLoading;  ///< A5
   StraighteningOptions straightening;  ///< B1
   RoadSmoothingOptions roadSmoothing;  ///< B2
   RoadConnectionOptions connection;    ///< B3

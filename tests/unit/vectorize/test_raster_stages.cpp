@@ -194,3 +194,34 @@ TEST(ParcelLoading, ParcelsJoinTheBlockOfTheirFirstPatchAndTakeTableValues) {
   EXPECT_EQ(pl.derivedFromRaster, 2u);
   EXPECT_EQ(rb.blocks[rb.blockOf.at(1, 1)].parcels, (std::vector<int>{0, 1}));
 }
+
+TEST(ParcelLoading, AParcelTheRoadsSplitJoinsTheBlockHoldingMostOfIt) {
+  // Plot 5 has its first patch (row-major) in the west block and three patches in the east block.
+  VectorizeInput in = drawInput({
+      "sssssss",
+      "srsrrrs",
+      "srsrrrs",
+      "sssssss",
+  });
+  in.parcelIds = Grid<std::int32_t>(7, 4, 0);
+  for (auto [c, r] : std::vector<std::pair<int, int>>{{1, 1}, {3, 1}, {4, 1}, {3, 2}})
+    in.parcelIds.at(c, r) = 5;
+  in.parcelIds.at(0, 0) = 6;  // one patch on the road, one in the west block: a tie, the first patch's
+  in.parcelIds.at(1, 2) = 6;
+  in.parcelTable = {{5, LandUse::Commercial, 40.0, 4}, {6, LandUse::Residential, 10.0, 2}};
+  RawBlocks rb = buildRawBlocks(in.landUse, {});
+  const int west = rb.blockOf.at(1, 1), east = rb.blockOf.at(4, 1);
+  ASSERT_NE(west, east);
+  std::vector<SimBlock> blocks = rb.blocks;
+  const ParcelLoading majority = loadParcels(in, rb.blockOf, blocks);
+  EXPECT_EQ(majority.parcels[0].simBlock, east);
+  EXPECT_EQ(majority.parcels[1].simBlock, -1);
+  EXPECT_EQ(majority.unattached, 1u);
+  EXPECT_EQ(blocks[east].parcels, (std::vector<int>{0}));
+  // The documents' first-patch rule puts the whole commercial plot, and its 40 people, in the west
+  // block, which holds one of its four patches.
+  blocks = rb.blocks;
+  ParcelLoadingOptions firstPatch;
+  firstPatch.majorityBlock = false;
+  EXPECT_EQ(loadParcels(in, rb.blockOf, blocks, {}, firstPatch).parcels[0].simBlock, west);
+}
