@@ -143,9 +143,9 @@ app::CommandSpec spec() {
                      "beside primary roads.")
                   .isAdvanced());
   o.push_back(option("-keep-all-roads", ValueType::Flag, "",
-                     "Keep every road of the grid: no patch cleaning (A3), no short-cycle removal (B4), "
-                     "no dead-end removal (B5); for grids rasterized from mapped streets. Not with "
-                     "-cycle-nodes or -dead-end-angle.")
+                     "Keep the roads the documents remove on purpose: no patch cleaning (A3), no "
+                     "short-cycle removal (B4), no dead-end removal (B5); for grids rasterized from "
+                     "mapped streets. Not with -cycle-nodes or -dead-end-angle.")
                   .isAdvanced());
   o.push_back(option("-cycle-nodes", ValueType::Integer, "<n>",
                      "Road cycles of at most this many nodes lose a segment (B4).")

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
+#include <optional>
 
 #include "urbanvec/vectorize/road_network.hpp"
 #include "urbanvec/vectorize/vectorize_input.hpp"
@@ -20,68 +22,60 @@ bool isRoad(const RoadNode& n) {
   return n.alive && n.type != NodeType::Perimeter;
 }
 
-/// A node contracted into an intersection, as it was, and the nodes it linked besides the intersection.
-struct Contraction {
-  int into;
-  RoadNode node;
-  std::vector<std::int32_t> others;
-};
-
-/// Puts back the contractions whose old links covered a road cell of `cells` that no road link covers
-/// now (within `radius`), while the links they replaced still exist. Returns how many.
-std::size_t undoUncoveringContractions(RoadGraph& graph, const std::vector<Contraction>& contractions,
-                                       const Grid<std::uint8_t>& cells, double radius) {
-  const int w = cells.width, h = cells.height;
-  std::vector<std::uint8_t> covered(static_cast<size_t>(w) * h, 0);
-  auto cover = [&](const Vec2& a, const Vec2& b) {
-    forEachCellNearSegment(w, h, a, b, radius, [&](int col, int row, double) {
-      covered[static_cast<size_t>(row) * w + col] = 1;
-    });
-  };
-  for (size_t a = 0; a < graph.nodes.size(); ++a) {
-    if (!isRoad(graph.nodes[a])) continue;
-    for (int b : graph.nodes[a].links)
-      if (b > static_cast<int>(a) && isRoad(graph.nodes[b])) cover(graph.nodes[a].p, graph.nodes[b].p);
-  }
-  std::vector<char> undone(contractions.size(), 0);
-  std::size_t count = 0;
-  for (bool changed = true; changed;) {
-    changed = false;
-    // Latest first: an earlier contraction's links may only exist again once a later one is undone.
-    for (size_t k = contractions.size(); k-- > 0;) {
-      const Contraction& c = contractions[k];
-      if (undone[k] || !graph.nodes[c.into].alive) continue;
-      const Vec2 into = graph.nodes[c.into].p;
-      bool restorable = true;
-      for (int o : c.others) restorable = restorable && graph.nodes[o].alive && graph.linked(c.into, o);
-      if (!restorable) continue;
-      bool uncovers = false;
-      auto check = [&](const Vec2& a, const Vec2& b) {
-        forEachCellNearSegment(w, h, a, b, radius, [&](int col, int row, double) {
-          const size_t i = static_cast<size_t>(row) * w + col;
-          uncovers = uncovers || (isRoadCode(cells.cells[i]) && !covered[i]);
-        });
-      };
-      check(c.node.p, into);
-      for (int o : c.others) check(c.node.p, graph.nodes[o].p);
-      if (!uncovers) continue;
-      RoadNode back = c.node;
-      back.links.clear();
-      graph.nodes.push_back(back);
-      const int id = static_cast<int>(graph.nodes.size()) - 1;
-      graph.link(c.into, id);
-      cover(c.node.p, into);
-      for (int o : c.others) {
-        graph.unlink(c.into, o);
-        graph.link(id, o);
-        if (isRoad(graph.nodes[o])) cover(c.node.p, graph.nodes[o].p);
-      }
-      undone[k] = 1;
-      ++count;
-      changed = true;
+/// How many road links pass within `radius` of each cell centre, kept up to date while B5 contracts,
+/// so a contraction that would leave a covered road cell with none is seen before it is made.
+class LinkCover {
+ public:
+  LinkCover(const RoadGraph& graph, const Grid<std::uint8_t>& cells, double radius)
+      : cells_(cells), radius_(radius), count_(cells.cells.size(), 0) {
+    for (size_t a = 0; a < graph.nodes.size(); ++a) {
+      if (!isRoad(graph.nodes[a])) continue;
+      for (int b : graph.nodes[a].links)
+        if (b > static_cast<int>(a) && isRoad(graph.nodes[b])) add(graph.nodes[a].p, graph.nodes[b].p, 1);
     }
   }
-  return count;
+  /// Adds `delta` to the count of every cell within the radius of segment ab.
+  void add(const Vec2& a, const Vec2& b, int delta) {
+    forEachCellNearSegment(cells_.width, cells_.height, a, b, radius_, [&](int col, int row, double) {
+      count_[static_cast<size_t>(row) * cells_.width + col] += delta;
+    });
+  }
+  /// Whether a road cell within the radius of segment ab has no link left.
+  bool uncoveredNear(const Vec2& a, const Vec2& b) const {
+    bool uncovered = false;
+    forEachCellNearSegment(cells_.width, cells_.height, a, b, radius_, [&](int col, int row, double) {
+      const size_t i = static_cast<size_t>(row) * cells_.width + col;
+      uncovered = uncovered || (isRoadCode(cells_.cells[i]) && count_[i] <= 0);
+    });
+    return uncovered;
+  }
+
+ private:
+  const Grid<std::uint8_t>& cells_;
+  double radius_;
+  std::vector<std::int32_t> count_;
+};
+
+/// The road nodes linked to `a` or `b` (each once, `a` and `b` left out): the neighbours of the node
+/// B5 makes of the two.
+std::vector<int> mergedNeighbours(const RoadGraph& graph, int a, int b) {
+  std::vector<int> out;
+  for (int end : {a, b})
+    for (int z : graph.nodes[end].links)
+      if (z != a && z != b && isRoad(graph.nodes[z]) && std::find(out.begin(), out.end(), z) == out.end())
+        out.push_back(z);
+  return out;
+}
+
+/// The road links of node `a` (to road nodes), as segments from `from` (a's position, or where it
+/// will be) to each neighbour, leaving out the nodes in `skip`.
+std::vector<std::array<Vec2, 2>> roadLinks(const RoadGraph& graph, int a, const Vec2& from,
+                                           std::initializer_list<int> skip) {
+  std::vector<std::array<Vec2, 2>> out;
+  for (int b : graph.nodes[a].links)
+    if (isRoad(graph.nodes[b]) && std::find(skip.begin(), skip.end(), b) == skip.end())
+      out.push_back({from, graph.nodes[b].p});
+  return out;
 }
 
 }  // namespace
@@ -92,8 +86,9 @@ IntersectionSimplificationStats simplifyIntersections(RoadGraph& graph,
   IntersectionSimplificationStats stats;
   const double cosLimit = std::cos(options.deadEndAngle * M_PI / 180.0);
   const size_t n = graph.nodes.size();
-  // 1. Dead ends angled within deadEndAngle of another road.
-  for (size_t i = 0; i < n; ++i) {
+  // 1. Dead ends angled within deadEndAngle of another road (none when it is 0: cos 0 = 1 is not a
+  // safe bound for rounded cosines of parallel links).
+  for (size_t i = 0; i < n && options.deadEndAngle > 0.0; ++i) {
     if (!isRoad(graph.nodes[i])) continue;
     // The links that count: all (the documents), or only those to road nodes.
     auto counted = [&](int j) { return !options.deadEndRoadsOnly || isRoad(graph.nodes[j]); };
@@ -127,7 +122,8 @@ IntersectionSimplificationStats simplifyIntersections(RoadGraph& graph,
   }
   reportProgress(progress, 0.5, "intersection simplification");
   // 2. Nodes too close to an intersection.
-  std::vector<Contraction> contractions;
+  std::optional<LinkCover> cover;
+  if (options.coverCells) cover.emplace(graph, *options.coverCells, options.coverRadius);
   for (size_t i = 0; i < n; ++i) {
     if (!isRoad(graph.nodes[i]) || graph.nodes[i].links.size() < 3) continue;
     bool changed = true;
@@ -141,31 +137,43 @@ IntersectionSimplificationStats simplifyIntersections(RoadGraph& graph,
             cn.type == NodeType::Primary ? options.primaryDistance : options.secondaryDistance;
         if (distance(cn.p, graph.nodes[i].p) >= limit) continue;
         const bool isIntersection = cn.links.size() >= 3;
+        if (cover) {
+          // The links of both ends go; the merged node, where it will stand, links to the union of
+          // their neighbours. Keep the two nodes when that leaves a road cell without a link.
+          const Vec2 merged = isIntersection ? (graph.nodes[i].p + cn.p) * 0.5 : graph.nodes[i].p;
+          auto gone = roadLinks(graph, c, cn.p, {});
+          const auto ofIntersection = roadLinks(graph, static_cast<int>(i), graph.nodes[i].p, {c});
+          gone.insert(gone.end(), ofIntersection.begin(), ofIntersection.end());
+          std::vector<std::array<Vec2, 2>> after;
+          for (int z : mergedNeighbours(graph, static_cast<int>(i), c))
+            after.push_back({merged, graph.nodes[z].p});
+          for (const auto& l : gone) cover->add(l[0], l[1], -1);
+          for (const auto& l : after) cover->add(l[0], l[1], 1);
+          bool uncovers = false;
+          for (const auto& l : gone) uncovers = uncovers || cover->uncoveredNear(l[0], l[1]);
+          if (uncovers) {
+            for (const auto& l : after) cover->add(l[0], l[1], -1);
+            for (const auto& l : gone) cover->add(l[0], l[1], 1);
+            ++stats.contractionsKept;
+            continue;
+          }
+        }
         if (isIntersection) {
           graph.nodes[i].p = (graph.nodes[i].p + cn.p) * 0.5;
           ++stats.intersectionsMerged;
         } else {
           ++stats.nodesContracted;
-          if (options.coverCells) contractions.push_back({static_cast<int>(i), cn, {}});
         }
         if (cn.type == NodeType::Primary) graph.nodes[i].type = NodeType::Primary;
         const std::vector<std::int32_t> others = cn.links;
         graph.removeNode(c);
         for (int o : others)
-          if (o != static_cast<int>(i)) {
-            // A link the intersection already had is not the contracted node's to give back.
-            if (!isIntersection && options.coverCells && !graph.linked(static_cast<int>(i), o))
-              contractions.back().others.push_back(o);
-            graph.link(static_cast<int>(i), o);
-          }
+          if (o != static_cast<int>(i)) graph.link(static_cast<int>(i), o);
         changed = true;
         break;
       }
     }
   }
-  if (options.coverCells && !contractions.empty())
-    stats.contractionsUndone =
-        undoUncoveringContractions(graph, contractions, *options.coverCells, options.coverRadius);
   graph.compact();
   updateIntersectionFlags(graph);
   graph.sortLinksClockwise();

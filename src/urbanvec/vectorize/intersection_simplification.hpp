@@ -27,10 +27,10 @@ struct IntersectionSimplificationOptions {
   double primaryDistance = 1.0;
   /// Secondary nodes closer than this to an intersection are contracted into it, in pw.
   double secondaryDistance = 0.5;
-  /// [INFERENCE, beyond the documents] When set (LandUse codes after A3/A4), a contraction that left a
-  /// road cell farther than `coverRadius` pw from every road link is undone (the node goes back on
-  /// the links it had): in wide secondary areas, chains of contractions can pull the roads off the
-  /// fringe cells, as smoothing can (RoadSmoothingOptions::coverCells). nullptr = the documents' rule.
+  /// [INFERENCE, beyond the documents] When set (LandUse codes after A3/A4), a contraction or merge
+  /// that would leave a road cell farther than `coverRadius` pw from every road link is not made: in
+  /// wide secondary areas, chains of contractions can pull the roads off the fringe cells, as
+  /// smoothing can (RoadSmoothingOptions::coverCells). nullptr = the documents' rule.
   const Grid<std::uint8_t>* coverCells = nullptr;
   double coverRadius = 1.5;
 };
@@ -41,7 +41,7 @@ struct IntersectionSimplificationStats {
   std::vector<std::array<Vec2, 2>> removedLinks;
   std::size_t nodesContracted = 0;
   std::size_t intersectionsMerged = 0;
-  std::size_t contractionsUndone = 0;  ///< to keep road cells covered (coverCells)
+  std::size_t contractionsKept = 0;  ///< contractions and merges not made, to keep road cells covered
 };
 
 IntersectionSimplificationStats simplifyIntersections(RoadGraph& graph,

@@ -68,11 +68,13 @@ ParcelLoading loadParcels(const VectorizeInput& input, const Grid<std::int32_t>&
         const auto range = std::equal_range(in.begin(), in.end(), block);
         return range.second - range.first;
       };
-      // Strictly more patches than the first patch's block; among equals the lower block index.
-      auto most = count(p.simBlock);
+      // Strictly more patches than the first patch's block; among equals a block before none, then
+      // the lower block index.
+      const std::int32_t first = p.simBlock;
+      auto most = count(first);
       for (auto run = in.begin(); run != in.end();) {
         const auto end = std::upper_bound(run, in.end(), *run);
-        if (end - run > most) {
+        if (end - run > most || (end - run == most && p.simBlock < 0 && p.simBlock != first && *run >= 0)) {
           most = end - run;
           p.simBlock = *run;
         }

@@ -12,7 +12,8 @@ namespace urbanvec::vectorize {
 
 struct ParcelLoadingOptions {
   /// [INFERENCE, beyond the documents] Attach a parcel to the block holding most of its patches ("no
-  /// block" counts as a candidate; ties go to the first patch's). The documents take the block of
+  /// block" counts as a candidate; ties go to the first patch's, then to a block before none, then to
+  /// the lower block index). The documents take the block of
   /// the first patch: the same whenever a parcel lies in one block, as a simulator's parcels do. On
   /// grids rasterized from real plots, roads split plots over several blocks, and the first patch's
   /// block can hold a sliver of the plot while its whole use and population go there.

@@ -177,9 +177,9 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
     if (options.keepRoadCellsCovered) simplification.coverCells = &result.cells;
     IntersectionSimplificationStats s = simplifyIntersections(graph, simplification, p);
     result.deadEndRemovedLinks = std::move(s.removedLinks);
-    return counts(s.deadEndsRemoved, " dead ends removed, ", s.nodesContracted, " nodes contracted (",
-                  s.contractionsUndone, " undone to keep road cells covered), ", s.intersectionsMerged,
-                  " intersections merged");
+    return counts(s.deadEndsRemoved, " dead ends removed, ", s.nodesContracted, " nodes contracted, ",
+                  s.contractionsKept, " contractions left out to keep road cells covered, ",
+                  s.intersectionsMerged, " intersections merged");
   });
   run("B6", "curve smoothing", 0.12, true, [&](const Progress& p) {
     CurveSmoothingOptions curves = options.curves;

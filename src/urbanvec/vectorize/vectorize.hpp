@@ -46,9 +46,10 @@ struct VectorizeOptions {
   bool keepDevelopedCycles = true;
   IntersectionSimplificationOptions intersections;  ///< B5
   CurveSmoothingOptions curves;                     ///< B6
-  /// [INFERENCE, beyond the documents] B2 and B6 cut back averaging moves that would uncover road
-  /// cells (RoadSmoothingOptions::coverCells); false = the documents' averaging, bounded only by the
-  /// smoothing reach.
+  /// [INFERENCE, beyond the documents] B2 and B6 cut back averaging moves, and B5 leaves out
+  /// contractions, that would uncover road cells (RoadSmoothingOptions::coverCells,
+  /// IntersectionSimplificationOptions::coverCells); false = the documents' rules (smoothing bounded
+  /// only by the smoothing reach).
   bool keepRoadCellsCovered = true;
   /// [INFERENCE] Node crossing links and contract zero-length links after B6, so segments meet only
   /// at shared nodes (the output contract); false = leave the B6 graph as it is.

@@ -526,36 +526,85 @@ TEST(Smoothing, AMoveThatWouldUncoverARoadCellIsCutBack) {
   EXPECT_LE(distance(g.nodes[3].p, {5.5, 4.5}), 1.5);
 }
 
-TEST(IntersectionSimplification, AContractionThatWouldUncoverARoadCellIsUndone) {
+namespace {
+
+/// An intersection at `centre` with one chain of secondary nodes per arm, the chain's first node
+/// linked to the intersection.
+RoadGraph intersectionWithArms(const Vec2& centre, const std::vector<std::vector<Vec2>>& arms) {
+  RoadGraph g;
+  const int x = g.addNode(centre, NodeType::Secondary);
+  for (const std::vector<Vec2>& arm : arms) {
+    int previous = x;
+    for (const Vec2& p : arm) {
+      const int node = g.addNode(p, NodeType::Secondary);
+      g.link(previous, node);
+      previous = node;
+    }
+  }
+  return g;
+}
+
+/// B5 on `g` with the coverage guard over `cells` when `guard`; the farthest road cell from the result.
+double farthestAfterB5(RoadGraph& g, const Grid<std::uint8_t>& cells, bool guard,
+                       IntersectionSimplificationStats& stats) {
+  IntersectionSimplificationOptions options;
+  if (guard) options.coverCells = &cells;
+  stats = simplifyIntersections(g, options);
+  return farthestRoadCell(cells, g);
+}
+
+}  // namespace
+
+TEST(IntersectionSimplification, AContractionThatWouldUncoverARoadCellIsNotMade) {
   // An intersection at (5.6, 5.5) with arms west, south and east-then-north: the east arm's first
   // node lies 0.45 pw from the intersection, so B5 contracts it and links the intersection straight
   // to (6.05, 9.5). The road cell centred at (7.5, 7.5) is 1.45 cells from the old arm and would be
   // 1.67 from the new one.
-  auto graph = [] {
-    RoadGraph g;
-    const int x = g.addNode({5.6, 5.5}, NodeType::Secondary);
-    const int w = g.addNode({3.6, 5.5}, NodeType::Secondary), w2 = g.addNode({2.6, 5.5}, NodeType::Secondary);
-    const int s = g.addNode({5.6, 3.5}, NodeType::Secondary), s2 = g.addNode({5.6, 2.5}, NodeType::Secondary);
-    const int c = g.addNode({6.05, 5.5}, NodeType::Secondary),
-              o = g.addNode({6.05, 9.5}, NodeType::Secondary);
-    for (int arm : {w, s, c}) g.link(x, arm);
-    g.link(w, w2);
-    g.link(s, s2);
-    g.link(c, o);
-    return g;
-  };
+  const RoadGraph graph = intersectionWithArms(
+      {5.6, 5.5}, {{{3.6, 5.5}, {2.6, 5.5}}, {{5.6, 3.5}, {5.6, 2.5}}, {{6.05, 5.5}, {6.05, 9.5}}});
   Grid<std::uint8_t> cells(12, 12, 0);
   cells.at(7, 4) = static_cast<std::uint8_t>(LandUse::SecondaryRoad);  // centre (7.5, 7.5)
-  RoadGraph literal = graph();
-  EXPECT_EQ(simplifyIntersections(literal, {}).nodesContracted, 1u);
-  EXPECT_GT(farthestRoadCell(cells, literal), 1.6);
-  RoadGraph guarded = graph();
-  IntersectionSimplificationOptions options;
-  options.coverCells = &cells;
-  const IntersectionSimplificationStats st = simplifyIntersections(guarded, options);
+  IntersectionSimplificationStats st;
+  RoadGraph literal = graph;
+  EXPECT_GT(farthestAfterB5(literal, cells, false, st), 1.6);
   EXPECT_EQ(st.nodesContracted, 1u);
-  EXPECT_EQ(st.contractionsUndone, 1u);
-  EXPECT_NEAR(farthestRoadCell(cells, guarded), 1.45, 1e-9);
+  RoadGraph guarded = graph;
+  EXPECT_NEAR(farthestAfterB5(guarded, cells, true, st), 1.45, 1e-9);
+  EXPECT_EQ(st.nodesContracted, 0u);
+  EXPECT_EQ(st.contractionsKept, 1u);
   EXPECT_EQ(guarded.aliveCount(), 7u);
   EXPECT_EQ(countDegree(guarded, 3), 1);
+}
+
+TEST(IntersectionSimplification, AChainOfContractionsStopsBeforeItUncoversARoadCell) {
+  // North of the intersection (5.5, 5.8) the road turns back on itself: (5.5, 6.25) then (5.5, 5.35),
+  // both within 0.5 pw, then away south-west. The road cell centred at (5.5, 7.5) is 1.25 cells from
+  // the first link; contracting both nodes leaves it 1.7 cells from every road.
+  const RoadGraph graph = intersectionWithArms(
+      {5.5, 5.8},
+      {{{3.5, 5.8}, {2.5, 5.8}}, {{7.5, 5.8}, {8.5, 5.8}}, {{5.5, 6.25}, {5.5, 5.35}, {2.5, 1.5}}});
+  Grid<std::uint8_t> cells(12, 12, 0);
+  cells.at(5, 4) = static_cast<std::uint8_t>(LandUse::SecondaryRoad);  // centre (5.5, 7.5)
+  IntersectionSimplificationStats st;
+  RoadGraph literal = graph;
+  EXPECT_NEAR(farthestAfterB5(literal, cells, false, st), 1.7, 1e-9);
+  EXPECT_EQ(st.nodesContracted, 2u);
+  RoadGraph guarded = graph;
+  EXPECT_NEAR(farthestAfterB5(guarded, cells, true, st), 1.25, 1e-9);
+  EXPECT_EQ(st.contractionsKept, 1u);
+}
+
+TEST(IntersectionSimplification, ZeroDeadEndAngleRemovesNoDeadEnd) {
+  // A dead end exactly along another arm: rounded cosines of parallel links can exceed cos 0 = 1.
+  RoadGraph g;
+  const int x = g.addNode({0, 0}, NodeType::Secondary);
+  const int far = g.addNode({19, 12}, NodeType::Secondary), dead = g.addNode({76, 48}, NodeType::Secondary);
+  const int s = g.addNode({0, -3}, NodeType::Secondary), s2 = g.addNode({0, -6}, NodeType::Secondary);
+  const int far2 = g.addNode({40, 30}, NodeType::Secondary);
+  for (int arm : {far, dead, s}) g.link(x, arm);
+  g.link(s, s2);
+  g.link(far, far2);
+  IntersectionSimplificationOptions keep;
+  keep.deadEndAngle = 0.0;
+  EXPECT_EQ(simplifyIntersections(g, keep).deadEndsRemoved, 0u);
 }

@@ -195,8 +195,11 @@ TEST(ParcelLoading, ParcelsJoinTheBlockOfTheirFirstPatchAndTakeTableValues) {
   EXPECT_EQ(rb.blocks[rb.blockOf.at(1, 1)].parcels, (std::vector<int>{0, 1}));
 }
 
-TEST(ParcelLoading, AParcelTheRoadsSplitJoinsTheBlockHoldingMostOfIt) {
-  // Plot 5 has its first patch (row-major) in the west block and three patches in the east block.
+namespace {
+
+/// A one-cell-wide west block (column 1) and a three-cell-wide east block (columns 3-5), rows 1-2,
+/// with an empty parcels raster.
+VectorizeInput twoBlocksAcrossARoad() {
   VectorizeInput in = drawInput({
       "sssssss",
       "srsrrrs",
@@ -204,6 +207,14 @@ TEST(ParcelLoading, AParcelTheRoadsSplitJoinsTheBlockHoldingMostOfIt) {
       "sssssss",
   });
   in.parcelIds = Grid<std::int32_t>(7, 4, 0);
+  return in;
+}
+
+}  // namespace
+
+TEST(ParcelLoading, AParcelTheRoadsSplitJoinsTheBlockHoldingMostOfIt) {
+  // Plot 5 has its first patch (row-major) in the west block and three patches in the east block.
+  VectorizeInput in = twoBlocksAcrossARoad();
   for (auto [c, r] : std::vector<std::pair<int, int>>{{1, 1}, {3, 1}, {4, 1}, {3, 2}})
     in.parcelIds.at(c, r) = 5;
   in.parcelIds.at(0, 0) = 6;  // one patch on the road, one in the west block: a tie, the first patch's
@@ -224,4 +235,16 @@ TEST(ParcelLoading, AParcelTheRoadsSplitJoinsTheBlockHoldingMostOfIt) {
   ParcelLoadingOptions firstPatch;
   firstPatch.majorityBlock = false;
   EXPECT_EQ(loadParcels(in, rb.blockOf, blocks, {}, firstPatch).parcels[0].simBlock, west);
+}
+
+TEST(ParcelLoading, ATieBetweenABlockAndNoBlockGoesToTheBlock) {
+  // Plot 8: its first patch in the west block, two patches on the road, two in the east block.
+  VectorizeInput in = twoBlocksAcrossARoad();
+  for (auto [c, r] : std::vector<std::pair<int, int>>{{1, 1}, {2, 1}, {2, 2}, {4, 1}, {5, 1}})
+    in.parcelIds.at(c, r) = 8;
+  RawBlocks rb = buildRawBlocks(in.landUse, {});
+  const ParcelLoading pl = loadParcels(in, rb.blockOf, rb.blocks);
+  ASSERT_EQ(pl.parcels.size(), 1u);
+  EXPECT_EQ(pl.parcels[0].simBlock, rb.blockOf.at(4, 1));
+  EXPECT_EQ(pl.unattached, 0u);
 }
