@@ -3,6 +3,7 @@
 #include "urbanvec/vectorize/land_use_assignment.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 
@@ -32,15 +33,13 @@ UseModel buildUseModel(const SimBlockSummary& sim, const LandUseOptions& options
   std::sort(model.uses.begin(), model.uses.end());
   const size_t n = model.uses.size();
   model.parcelsOfUse.resize(n);
-  std::vector<double> useArea(n, 0.0);
   for (const SimParcel& p : sim.parcels) {
     const int i = model.indexOf(p.use);
-    if (i < 0) continue;
-    model.parcelsOfUse[i].push_back(&p);
-    if (sim.useArea.empty()) useArea[i] += p.cells;
+    if (i >= 0) model.parcelsOfUse[i].push_back(&p);
   }
-  if (!sim.useArea.empty())
-    for (size_t i = 0; i < n; ++i) useArea[i] = sim.useArea.at(static_cast<size_t>(model.uses[i]));
+  const std::array<double, kLandUseClassCount> areas = simulatedUseAreas(sim);
+  std::vector<double> useArea(n, 0.0);
+  for (size_t i = 0; i < n; ++i) useArea[i] = areas[static_cast<size_t>(model.uses[i])];
   const double undevShare = sim.area > 0.0 ? sim.undevelopedArea / sim.area : 0.0;
   model.undevelopedActive = undevShare >= options.undevelopedSwitch;
   // Eq. 3.3: shares of developed land below the switch, of all land at or above it.

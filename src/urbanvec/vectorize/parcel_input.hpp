@@ -5,6 +5,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -36,6 +37,19 @@ struct SimBlockSummary {
   std::vector<double> useArea;
   std::vector<SimParcel> parcels;
 };
+
+/// The area of each land-use class in the simulated block(s), cells², indexed by LandUse code: the
+/// block's own patches (useArea), or its parcels' cells when those are not known. The use shares of
+/// Eq. 3.3 (E4, E5) and the checkers' use L1 both read it.
+inline std::array<double, kLandUseClassCount> simulatedUseAreas(const SimBlockSummary& sim) {
+  std::array<double, kLandUseClassCount> areas{};
+  if (!sim.useArea.empty()) {
+    for (int use = 0; use < kLandUseClassCount; ++use) areas[use] = sim.useArea.at(static_cast<size_t>(use));
+  } else {
+    for (const SimParcel& p : sim.parcels) areas[static_cast<size_t>(p.use)] += p.cells;
+  }
+  return areas;
+}
 
 /// One vector block as D1-D5 leave it (spec §2.2 VecBlock), in cell units.
 struct ParcelBlock {

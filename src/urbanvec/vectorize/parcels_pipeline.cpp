@@ -3,6 +3,7 @@
 #include "urbanvec/vectorize/parcels_pipeline.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -299,19 +300,12 @@ double useShareDistance(const SimBlockSummary& sim, const std::vector<VectorParc
   // Index 0..8 by LandUse, index 9 for undeveloped.
   double simShare[10] = {}, vecShare[10] = {};
   double simTotal = 0.0, vecTotal = 0.0;
-  if (!sim.useArea.empty()) {
-    for (int use = 0; use < 9; ++use)
-      if (isDeveloped(static_cast<LandUse>(use))) {
-        simShare[use] = sim.useArea.at(static_cast<size_t>(use));
-        simTotal += simShare[use];
-      }
-  } else {
-    for (const SimParcel& p : sim.parcels)
-      if (isDeveloped(p.use)) {
-        simShare[static_cast<int>(p.use)] += p.cells;
-        simTotal += p.cells;
-      }
-  }
+  const std::array<double, kLandUseClassCount> areas = simulatedUseAreas(sim);
+  for (int use = 0; use < kLandUseClassCount; ++use)
+    if (isDeveloped(static_cast<LandUse>(use))) {
+      simShare[use] = areas[static_cast<size_t>(use)];
+      simTotal += simShare[use];
+    }
   if (sim.area > 0.0 && sim.undevelopedArea / sim.area >= undevelopedSwitch) {
     simShare[9] = sim.undevelopedArea;
     simTotal += sim.undevelopedArea;
