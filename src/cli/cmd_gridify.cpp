@@ -1,4 +1,5 @@
 // `urbanvec gridify`: real city vectors -> gridded input (issue 2 §2; docs/gridify.md).
+#include <array>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -38,7 +39,9 @@ app::CommandSpec spec() {
   s.group = "Gridded input";
   s.positionals = {
       {"input", "City vectors: .osm/.pbf, GeoPackage, shapefile or any OGR source.", Role::InputVector},
-      {"output_dir", "Folder to create with the grid and truth.gpkg.", Role::OutputFolder}};
+      {"output_dir",
+       "Folder to write the grid and truth.gpkg into (created when missing; other files in it are kept).",
+       Role::OutputFolder}};
   auto& o = s.options;
   o.push_back(option("-tr", ValueType::Real, "<metres>", "Cell size.").byDefault("12").withUnit("m"));
   o.push_back(
@@ -135,6 +138,10 @@ app::CommandSpec spec() {
   return s;
 }
 
+/// Every file gridify writes into its output folder.
+constexpr std::array<const char*, 5> kOutputFiles = {"landuse.tif", "density.tif", "parcels.tif",
+                                                     "parcels.csv", "truth.gpkg"};
+
 std::vector<std::string> splitList(const std::string& text) {
   std::vector<std::string> out;
   std::stringstream in(text);
@@ -197,8 +204,14 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   if (args.given("-t_srs")) io::crsToWkt(source.targetCrs, "-t_srs");  // a bad CRS fails before any reading
   if (args.given("-a_srs")) io::crsToWkt(source.assignedCrs, "-a_srs");
 
-  // Checks the output before the (long) work: it must not exist unless -overwrite, its folder writable.
-  io::AtomicOutput output(outputDir, args.flag("-overwrite"), /*isDirectory=*/true);
+  // Checks the output before the (long) work. The folder may exist and hold other files: only the
+  // files gridify writes are replaced (with -overwrite), never the folder or anything else in it.
+  io::OutputRules rules;
+  rules.overwrite = args.flag("-overwrite");
+  rules.isFolder = true;
+  rules.entries = {kOutputFiles.begin(), kOutputFiles.end()};
+  rules.inputs = ctx.inputs;
+  io::AtomicOutput output(outputDir, rules);
 
   const Progress readProgress = subProgress(ctx.progress, 0.0, 0.3);
   reportProgress(readProgress, 0.0, "reading");
@@ -223,7 +236,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   vector.crsWkt = result.spec.crsWkt;
   io::writeVectorDataset((dir / "truth.gpkg").string(), result.truth, vector);
   reportProgress(ctx.progress, 0.99, "writing");
-  output.commit();
+  output.commit(ctx.progress);
   reportProgress(ctx.progress, 1.0, "done");
 
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

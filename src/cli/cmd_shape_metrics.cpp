@@ -129,7 +129,12 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
     if (layers.empty()) throw invalidInput("input '" + input + "' has no vector layer");
     layerName = layers.front();
   }
-  io::AtomicOutput output(outputPath, args.flag("-overwrite"));
+  io::VectorWriteOptions write;
+  if (args.has("-of")) write.format = args.str("-of");
+  write.layerCreationOptions = args.values("-lco");
+  write.datasetCreationOptions = args.values("-dsco");
+  io::VectorOutput output(outputPath, write, {layerName},
+                          io::OutputRules{args.flag("-overwrite"), false, {}, ctx.inputs});
   io::VectorReadOptions read;
   if (args.given("-t_srs")) {
     const std::string wkt = io::crsToWkt(args.str("-t_srs"), "-t_srs");
@@ -206,13 +211,8 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
         std::to_string(tooSmall) + " polygon" + (tooSmall == 1 ? " has" : "s have") +
         " too few vertices for the chord lengths (fewer than 3 chords at the third scale): fractal_dimension "
         "is empty; try a smaller -step or fewer -scales");
-  io::VectorWriteOptions write;
-  write.format = io::vectorFormatFor(outputPath, args.has("-of") ? args.str("-of") : "");
-  write.layerCreationOptions = args.values("-lco");
-  write.datasetCreationOptions = args.values("-dsco");
-  write.crsWkt = read.targetCrs.empty() ? loaded->crsWkt : read.targetCrs;
-  io::writeVectorDataset(output.tempPath(), {layer}, write);
-  output.commit();
+  output.write({layer}, read.targetCrs.empty() ? loaded->crsWkt : read.targetCrs);
+  output.commit(ctx.progress);
   if (!ctx.quiet && ctx.out)
     *ctx.out << "shape-metrics: " << measured << " of " << layer.features.size() << " features measured, "
              << realistic << " realistic as city boundaries\n";

@@ -254,8 +254,17 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   const bool debug = args.given("-debug-stages");
   options.keepStageGraphs = debug;
 
-  // Check the outputs up front, before any work.
-  io::AtomicOutput out(output, overwrite);
+  // Check the outputs up front, before any work: format, creation options, name, inputs.
+  io::VectorWriteOptions write;
+  if (args.has("-of")) write.format = args.str("-of");
+  write.layerCreationOptions = args.values("-lco");
+  write.datasetCreationOptions = args.values("-dsco");
+  io::OutputRules rules;
+  rules.overwrite = overwrite;
+  rules.inputs = ctx.inputs;
+  io::VectorOutput out(
+      output, write,
+      options.roadsOnly ? std::vector<std::string>{"roads", "road_nodes"} : spec().outputLayers, rules);
   // A -debug-stages folder this run creates goes again when the run fails (declared before debugOut,
   // so the temporary file inside is gone first).
   struct CreatedFolder {
@@ -279,7 +288,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
     if (ec || !std::filesystem::is_directory(dir))
       throw invalidOption("-debug-stages: cannot create folder '" + dir + "'");
     debugOut =
-        std::make_unique<io::AtomicOutput>((std::filesystem::path(dir) / "stages.gpkg").string(), overwrite);
+        std::make_unique<io::AtomicOutput>((std::filesystem::path(dir) / "stages.gpkg").string(), rules);
   }
 
   io::GridInputPaths paths;
@@ -309,12 +318,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
                " cells from every output road");
   }
 
-  io::VectorWriteOptions write;
-  write.format = io::vectorFormatFor(output, args.has("-of") ? args.str("-of") : "");
-  write.layerCreationOptions = args.values("-lco");
-  write.datasetCreationOptions = args.values("-dsco");
-  write.crsWkt = input.spec.crsWkt;
-  io::writeVectorDataset(out.tempPath(), result.layers, write);
+  out.write(result.layers, input.spec.crsWkt);
   if (debugOut) {
     std::vector<Layer> layers;
     int k = 0;
@@ -330,9 +334,9 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
     dw.format = "GPKG";
     dw.crsWkt = input.spec.crsWkt;
     io::writeVectorDataset(debugOut->tempPath(), layers, dw);
-    debugOut->commit();
+    debugOut->commit(ctx.progress);
   }
-  out.commit();
+  out.commit(ctx.progress);
   createdFolder.keep = true;
 
   if (args.flag("-timings") && ctx.out) {

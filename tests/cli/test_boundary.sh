@@ -73,7 +73,7 @@ expect_stderr_contains "got 'nine'"
 run_cmd boundary -slope 3 "$WORK/bad.gpkg"
 expect_status 2
 run_cmd boundary -seed 4294967296 "$WORK/bad.gpkg"
-expect_status 1
+expect_status 2
 expect_stderr_contains "-seed must be at most"
 run_cmd boundary -fill 0.9 -max-tries 2 "$WORK/bad.gpkg"
 expect_status 1

@@ -87,7 +87,7 @@ expect_status 0
 before=$(md5sum "$WORK/bub/landuse.tif")
 run_cmd gridify -tr 6 -t_srs EPSG:32633 -roads-layer streets -buildings-layer buildings "$SRC/bubenec.gpkg" "$WORK/bub"
 expect_status 1
-expect_stderr_contains "already exists; use -overwrite"
+expect_stderr "ERROR: output folder '$WORK/bub' already holds landuse.tif, density.tif, parcels.tif, parcels.csv, truth.gpkg; use -overwrite to replace them (other files in the folder are kept)"
 expect_eq "$(md5sum "$WORK/bub/landuse.tif")" "$before" "untouched output"
 expect_no_temp "$WORK"
 finish

@@ -82,7 +82,7 @@ run_cmd shape-metrics -q "$WORK/shapes.gpkg" "$WORK/out.gpkg"
 expect_status 1
 expect_stderr "ERROR: output file '$WORK/out.gpkg' already exists; use -overwrite to replace it"
 run_cmd shape-metrics -q -skip 0 "$WORK/shapes.gpkg" "$WORK/x.gpkg"
-expect_status 1
+expect_status 2
 expect_missing "$WORK/x.gpkg"
 expect_no_temp "$WORK"
 

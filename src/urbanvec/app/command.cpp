@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -16,6 +17,7 @@
 
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/core/version.hpp"
+#include "urbanvec/io/atomic_output.hpp"
 #include "urbanvec/io/gdal_init.hpp"
 
 namespace urbanvec::app {
@@ -39,7 +41,9 @@ const Registered* findCommand(const std::string& name) {
 }
 
 std::atomic<bool> gInterrupted{false};
-extern "C" void onSignal(int) { gInterrupted = true; }
+extern "C" void onSignal(int) {
+  gInterrupted = true;
+}
 
 /// Options every subcommand accepts, handled here rather than by the subcommand.
 std::vector<OptionSpec> commonOptions() {
@@ -74,26 +78,40 @@ const OptionSpec* findOption(const std::vector<OptionSpec>& specs, const std::st
 
 std::string roleName(Role r) {
   switch (r) {
-    case Role::None: return "";
-    case Role::InputRaster: return "input_raster";
-    case Role::InputVector: return "input_vector";
-    case Role::InputFile: return "input_file";
-    case Role::OutputVector: return "output_vector";
-    case Role::OutputRaster: return "output_raster";
-    case Role::OutputFolder: return "output_folder";
-    case Role::OutputFile: return "output_file";
-    case Role::Crs: return "crs";
+    case Role::None:
+      return "";
+    case Role::InputRaster:
+      return "input_raster";
+    case Role::InputVector:
+      return "input_vector";
+    case Role::InputFile:
+      return "input_file";
+    case Role::OutputVector:
+      return "output_vector";
+    case Role::OutputRaster:
+      return "output_raster";
+    case Role::OutputFolder:
+      return "output_folder";
+    case Role::OutputFile:
+      return "output_file";
+    case Role::Crs:
+      return "crs";
   }
   return "";
 }
 
 std::string typeName(ValueType t) {
   switch (t) {
-    case ValueType::Flag: return "flag";
-    case ValueType::Integer: return "integer";
-    case ValueType::Real: return "real";
-    case ValueType::String: return "string";
-    case ValueType::Choice: return "choice";
+    case ValueType::Flag:
+      return "flag";
+    case ValueType::Integer:
+      return "integer";
+    case ValueType::Real:
+      return "real";
+    case ValueType::String:
+      return "string";
+    case ValueType::Choice:
+      return "choice";
   }
   return "";
 }
@@ -102,15 +120,19 @@ void checkValue(const OptionSpec& spec, const std::string& value) {
   if (spec.type == ValueType::Integer || spec.type == ValueType::Real) {
     errno = 0;
     char* end = nullptr;
-    const double v = spec.type == ValueType::Integer ? static_cast<double>(std::strtoll(value.c_str(), &end, 10))
-                                                     : std::strtod(value.c_str(), &end);
-    if (value.empty() || *end != '\0' || errno == ERANGE)
-      throw UsageError(spec.name + " expects " + (spec.type == ValueType::Integer ? "an integer" : "a number") +
-                       ", got '" + value + "'");
+    const double v = spec.type == ValueType::Integer
+                         ? static_cast<double>(std::strtoll(value.c_str(), &end, 10))
+                         : std::strtod(value.c_str(), &end);
+    const char* expected = spec.type == ValueType::Integer ? "an integer" : "a number";
+    if (value.empty() || *end != '\0')
+      throw UsageError(spec.name + " expects " + expected + ", got '" + value + "'");
+    if (errno == ERANGE || !std::isfinite(v))
+      throw UsageError(spec.name + " expects a finite " +
+                       (spec.type == ValueType::Integer ? "integer" : "number") + ", got '" + value + "'");
     if (spec.minimum && v < *spec.minimum)
-      throw invalidOption(spec.name + " must be at least " + CPLSPrintf("%g", *spec.minimum) + ", got " + value);
+      throw UsageError(spec.name + " must be at least " + CPLSPrintf("%g", *spec.minimum) + ", got " + value);
     if (spec.maximum && v > *spec.maximum)
-      throw invalidOption(spec.name + " must be at most " + CPLSPrintf("%g", *spec.maximum) + ", got " + value);
+      throw UsageError(spec.name + " must be at most " + CPLSPrintf("%g", *spec.maximum) + ", got " + value);
   }
   if (spec.type == ValueType::Choice &&
       std::find(spec.choices.begin(), spec.choices.end(), value) == spec.choices.end()) {
@@ -127,12 +149,15 @@ class ProgressPrinter {
   explicit ProgressPrinter(Style style) : style_(style) {}
 
   bool operator()(double fraction, std::string_view stage) {
-    if (gInterrupted) return false;
+    // Once an output is in place the run can no longer be undone: it finishes and says so.
+    if (gInterrupted && !io::anyOutputCommitted()) return false;
     if (style_ == Style::Gdal) {
       const int target = static_cast<int>(fraction * 40.0 + 1e-9);
       while (printedSteps_ <= target && printedSteps_ <= 40) {
-        if (printedSteps_ % 4 == 0) std::printf("%d", printedSteps_ / 4 * 10);
-        else std::printf(".");
+        if (printedSteps_ % 4 == 0)
+          std::printf("%d", printedSteps_ / 4 * 10);
+        else
+          std::printf(".");
         ++printedSteps_;
       }
       if (fraction >= 1.0 && !done_) {
@@ -177,6 +202,20 @@ void printTopHelp(std::ostream& out) {
          "Exit status: 0 success, 1 failure, 2 usage error, 3 cancelled.\n";
 }
 
+/// Every path the run reads (input roles of positionals and options): outputs never replace them.
+std::vector<std::string> inputPaths(const CommandSpec& spec, const ParsedArgs& parsed) {
+  auto isInput = [](Role r) {
+    return r == Role::InputRaster || r == Role::InputVector || r == Role::InputFile;
+  };
+  std::vector<std::string> paths;
+  for (size_t i = 0; i < spec.positionals.size() && i < parsed.positionals().size(); ++i)
+    if (isInput(spec.positionals[i].role)) paths.push_back(parsed.positionals()[i]);
+  for (const OptionSpec& o : spec.options)
+    if (isInput(o.role) && parsed.given(o.name))
+      for (const std::string& v : parsed.values(o.name)) paths.push_back(v);
+  return paths;
+}
+
 }  // namespace
 
 std::string numberText(double value) {
@@ -198,8 +237,12 @@ std::string ParsedArgs::str(const std::string& name) const {
   if (it == values_.end() || it->second.empty()) throw internalError("option " + name + " has no value");
   return it->second.front();
 }
-double ParsedArgs::real(const std::string& name) const { return std::strtod(str(name).c_str(), nullptr); }
-long long ParsedArgs::integer(const std::string& name) const { return std::strtoll(str(name).c_str(), nullptr, 10); }
+double ParsedArgs::real(const std::string& name) const {
+  return std::strtod(str(name).c_str(), nullptr);
+}
+long long ParsedArgs::integer(const std::string& name) const {
+  return std::strtoll(str(name).c_str(), nullptr, 10);
+}
 std::vector<std::string> ParsedArgs::values(const std::string& name) const {
   auto it = values_.find(name);
   return it == values_.end() ? std::vector<std::string>{} : it->second;
@@ -212,18 +255,25 @@ bool registerCommand(CommandSpec spec, CommandFunction run) {
 
 std::vector<OptionSpec> vectorOutputOptions() {
   std::vector<OptionSpec> o;
-  o.push_back(option("-of", ValueType::String, "<format>",
-                     "Output vector format (OGR driver name); default from the output extension, GPKG otherwise.")
+  o.push_back(
+      option("-of", ValueType::String, "<format>",
+             "Output vector format (OGR driver name); default from the output extension, GPKG otherwise.")
+          .isAdvanced());
+  o.push_back(option("-lco", ValueType::String, "<NAME=VALUE>", "Layer creation option (repeatable).")
+                  .many()
                   .isAdvanced());
-  o.push_back(option("-lco", ValueType::String, "<NAME=VALUE>", "Layer creation option (repeatable).").many().isAdvanced());
-  o.push_back(option("-dsco", ValueType::String, "<NAME=VALUE>", "Dataset creation option (repeatable).").many().isAdvanced());
+  o.push_back(option("-dsco", ValueType::String, "<NAME=VALUE>", "Dataset creation option (repeatable).")
+                  .many()
+                  .isAdvanced());
   o.push_back(option("-overwrite", ValueType::Flag, "", "Replace the output if it exists."));
   return o;
 }
 
 std::vector<OptionSpec> rasterOutputOptions() {
   std::vector<OptionSpec> o;
-  o.push_back(option("-co", ValueType::String, "<NAME=VALUE>", "Raster creation option (repeatable).").many().isAdvanced());
+  o.push_back(option("-co", ValueType::String, "<NAME=VALUE>", "Raster creation option (repeatable).")
+                  .many()
+                  .isAdvanced());
   o.push_back(option("-overwrite", ValueType::Flag, "", "Replace the output if it exists."));
   return o;
 }
@@ -248,7 +298,8 @@ ParsedArgs parseArguments(const CommandSpec& spec, const std::vector<std::string
     const std::string name = normalise(arg);
     const OptionSpec* opt = findOption(all, name);
     if (!opt) throw UsageError("unknown option '" + arg + "' (see 'urbanvec " + spec.name + " --help')");
-    if (parsed.given(opt->name) && !opt->repeatable) throw UsageError("option " + opt->name + " is given twice");
+    if (parsed.given(opt->name) && !opt->repeatable)
+      throw UsageError("option " + opt->name + " is given twice");
     parsed.given_[opt->name] = true;
     auto& values = parsed.values_[opt->name];
     if (opt->type == ValueType::Flag) {
@@ -281,7 +332,8 @@ ParsedArgs parseArguments(const CommandSpec& spec, const std::vector<std::string
 std::string helpText(const CommandSpec& spec) {
   std::ostringstream out;
   out << "Usage: urbanvec " << spec.name << " [options]";
-  for (const PositionalSpec& p : spec.positionals) out << (p.optional ? " [<" : " <") << p.name << (p.optional ? ">]" : ">");
+  for (const PositionalSpec& p : spec.positionals)
+    out << (p.optional ? " [<" : " <") << p.name << (p.optional ? ">]" : ">");
   out << "\n\n" << spec.summary << "\n";
   if (!spec.description.empty()) out << "\n" << spec.description << "\n";
   out << "\nArguments:\n";
@@ -289,6 +341,11 @@ std::string helpText(const CommandSpec& spec) {
   out << "\nOptions:\n";
   auto print = [&](const OptionSpec& o) {
     out << "  " << o.name << (o.metavar.empty() ? "" : " " + o.metavar) << "\n      " << o.help;
+    if (!o.choices.empty()) {
+      out << " Values:";
+      for (size_t i = 0; i < o.choices.size(); ++i) out << (i ? ", " : " ") << o.choices[i];
+      out << ".";
+    }
     if (!o.unit.empty()) out << " Unit: " << o.unit << ".";
     if (!o.defaultValue.empty()) out << " Default: " << o.defaultValue << ".";
     out << "\n";
@@ -312,7 +369,8 @@ std::string jsonUsage(const CommandSpec& spec) {
   j["version"] = kVersion;
   j["positionals"] = nlohmann::json::array();
   for (const PositionalSpec& p : spec.positionals)
-    j["positionals"].push_back({{"name", p.name}, {"help", p.help}, {"role", roleName(p.role)}, {"optional", p.optional}});
+    j["positionals"].push_back(
+        {{"name", p.name}, {"help", p.help}, {"role", roleName(p.role)}, {"optional", p.optional}});
   j["options"] = nlohmann::json::array();
   for (const OptionSpec& o : spec.options) {
     nlohmann::ordered_json oj;
@@ -321,7 +379,8 @@ std::string jsonUsage(const CommandSpec& spec) {
     oj["arity"] = o.type == ValueType::Flag ? 0 : o.arity;
     oj["metavar"] = o.metavar;
     oj["help"] = o.help;
-    oj["default"] = o.defaultValue.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(o.defaultValue);
+    oj["default"] =
+        o.defaultValue.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(o.defaultValue);
     oj["choices"] = o.choices;
     oj["repeatable"] = o.repeatable;
     oj["unit"] = o.unit;
@@ -350,7 +409,8 @@ int runMain(int argc, char** argv) {
     all["program"] = "urbanvec";
     all["version"] = kVersion;
     all["commands"] = nlohmann::json::array();
-    for (const Registered* r : sorted) all["commands"].push_back(nlohmann::ordered_json::parse(jsonUsage(r->spec)));
+    for (const Registered* r : sorted)
+      all["commands"].push_back(nlohmann::ordered_json::parse(jsonUsage(r->spec)));
     std::cout << all.dump(2) << "\n";
     return 0;
   }
@@ -377,25 +437,32 @@ int runMain(int argc, char** argv) {
   try {
     ParsedArgs parsed = parseArguments(command->spec, rest);
     const std::vector<std::string> config = parsed.values("--config");
-    for (size_t i = 0; i + 1 < config.size(); i += 2) CPLSetConfigOption(config[i].c_str(), config[i + 1].c_str());
+    for (size_t i = 0; i + 1 < config.size(); i += 2)
+      CPLSetConfigOption(config[i].c_str(), config[i + 1].c_str());
     io::ensureGdal();
     const bool quiet = parsed.flag("-q");
     const std::string style = parsed.str("-progress");
     auto printer = std::make_shared<ProgressPrinter>(quiet || style == "none" ? ProgressPrinter::Style::None
-                                                     : style == "lines"      ? ProgressPrinter::Style::Lines
-                                                                             : ProgressPrinter::Style::Gdal);
+                                                     : style == "lines"       ? ProgressPrinter::Style::Lines
+                                                                              : ProgressPrinter::Style::Gdal);
     std::signal(SIGINT, onSignal);
     std::signal(SIGTERM, onSignal);
     CommandContext context;
+    context.inputs = inputPaths(command->spec, parsed);
     context.quiet = quiet;
     context.out = &std::cout;
-    context.progress = monotonicProgress([printer](double f, std::string_view s) { return (*printer)(f, s); });
+    context.progress =
+        monotonicProgress([printer](double f, std::string_view s) { return (*printer)(f, s); });
     context.warn = [](const std::string& message) {
       std::fflush(stdout);
       std::cerr << "Warning: " << message << "\n";
     };
     command->run(parsed, context);
     reportProgress(context.progress, 1.0, "done");
+    if (gInterrupted)
+      context.warn(
+          "interrupted while the output was being moved into place; the run finished, and its output is "
+          "complete");
     return 0;
   } catch (const UsageError& e) {
     std::cerr << "ERROR: " << e.what() << "\n";

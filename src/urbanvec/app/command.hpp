@@ -30,7 +30,7 @@ enum class Role {
 };
 
 struct OptionSpec {
-  std::string name;                  ///< "-tr" (GDAL style: one dash)
+  std::string name;  ///< "-tr" (GDAL style: one dash)
   ValueType type = ValueType::Flag;
   int arity = 1;                     ///< values taken (e.g. -te takes 4); 0 for flags
   std::string metavar;               ///< "<metres>"
@@ -40,20 +40,48 @@ struct OptionSpec {
   bool repeatable = false;           ///< may be given several times (e.g. -lco)
   std::string unit;                  ///< "m", "cells", "degrees"...
   Role role = Role::None;
-  std::optional<double> minimum;     ///< inclusive bounds checked by the parser
+  std::optional<double> minimum;  ///< inclusive bounds checked by the parser
   std::optional<double> maximum;
-  bool advanced = false;             ///< shown in QGIS's "Advanced parameters"
+  bool advanced = false;  ///< shown in QGIS's "Advanced parameters"
 
   // Chainable setters: option("-tr", ValueType::Real, "<metres>", "...").byDefault("12").unit("m")
-  OptionSpec& byDefault(std::string v) { defaultValue = std::move(v); return *this; }
-  OptionSpec& withUnit(std::string u) { unit = std::move(u); return *this; }
-  OptionSpec& withRole(Role r) { role = r; return *this; }
-  OptionSpec& atLeast(double v) { minimum = v; return *this; }
-  OptionSpec& atMost(double v) { maximum = v; return *this; }
-  OptionSpec& values(int n) { arity = n; return *this; }
-  OptionSpec& oneOf(std::vector<std::string> c) { choices = std::move(c); type = ValueType::Choice; return *this; }
-  OptionSpec& many() { repeatable = true; return *this; }
-  OptionSpec& isAdvanced() { advanced = true; return *this; }
+  OptionSpec& byDefault(std::string v) {
+    defaultValue = std::move(v);
+    return *this;
+  }
+  OptionSpec& withUnit(std::string u) {
+    unit = std::move(u);
+    return *this;
+  }
+  OptionSpec& withRole(Role r) {
+    role = r;
+    return *this;
+  }
+  OptionSpec& atLeast(double v) {
+    minimum = v;
+    return *this;
+  }
+  OptionSpec& atMost(double v) {
+    maximum = v;
+    return *this;
+  }
+  OptionSpec& values(int n) {
+    arity = n;
+    return *this;
+  }
+  OptionSpec& oneOf(std::vector<std::string> c) {
+    choices = std::move(c);
+    type = ValueType::Choice;
+    return *this;
+  }
+  OptionSpec& many() {
+    repeatable = true;
+    return *this;
+  }
+  OptionSpec& isAdvanced() {
+    advanced = true;
+    return *this;
+  }
 };
 
 /// A number as option-default text: up to 10 significant digits, no trailing zeros ("0.3", "1e-06").
@@ -92,10 +120,10 @@ struct CommandSpec {
 /// Parsed arguments, with defaults filled in.
 class ParsedArgs {
  public:
-  bool has(const std::string& name) const;          ///< given on the command line or has a default
-  bool given(const std::string& name) const;        ///< given on the command line
+  bool has(const std::string& name) const;    ///< given on the command line or has a default
+  bool given(const std::string& name) const;  ///< given on the command line
   bool flag(const std::string& name) const { return given(name); }
-  std::string str(const std::string& name) const;   ///< first value
+  std::string str(const std::string& name) const;  ///< first value
   double real(const std::string& name) const;
   long long integer(const std::string& name) const;
   std::vector<std::string> values(const std::string& name) const;  ///< all values, every occurrence
@@ -110,8 +138,10 @@ class ParsedArgs {
 struct CommandContext {
   Progress progress;  ///< prints progress as asked (-q, -progress); checks for cancellation
   std::function<void(const std::string&)> warn;  ///< prints "Warning: ..." on stderr
-  std::ostream* out = nullptr;                     ///< stdout (reports, tables)
+  std::ostream* out = nullptr;                   ///< stdout (reports, tables)
   bool quiet = false;
+  /// Paths the run reads (from the input roles of the spec): pass them to io::OutputRules::inputs.
+  std::vector<std::string> inputs;
 };
 
 using CommandFunction = std::function<void(const ParsedArgs&, CommandContext&)>;

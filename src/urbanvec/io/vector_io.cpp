@@ -6,12 +6,17 @@
 #include <ogrsf_frmts.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
+#include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <thread>
 #include <tuple>
 
 #include "urbanvec/core/error.hpp"
+#include "urbanvec/io/atomic_output.hpp"
 #include "urbanvec/io/gdal_init.hpp"
 #include "urbanvec/io/layer_styles.hpp"
 
@@ -180,6 +185,14 @@ DatasetPtr openVector(const std::string& path, const std::string& role) {
   return ds;
 }
 
+GDALDriver* vectorDriver(const std::string& format) {
+  ensureGdal();
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(format.c_str());
+  if (!driver || !driver->GetMetadataItem(GDAL_DCAP_VECTOR) || !driver->GetMetadataItem(GDAL_DCAP_CREATE))
+    throw invalidOption("-of: '" + format + "' is not a vector format GDAL can write");
+  return driver;
+}
+
 const char* kStyleTable = "layer_styles";
 
 void writeLayerStyles(GDALDataset& ds, const std::map<std::string, std::string>& styles) {
@@ -242,11 +255,8 @@ std::string vectorFormatFor(const std::string& path, const std::string& requeste
 
 void writeVectorDataset(const std::string& path, const std::vector<Layer>& layers,
                         const VectorWriteOptions& options) {
-  ensureGdal();
   const std::string format = vectorFormatFor(path, options.format);
-  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(format.c_str());
-  if (!driver || !driver->GetMetadataItem(GDAL_DCAP_VECTOR) || !driver->GetMetadataItem(GDAL_DCAP_CREATE))
-    throw invalidOption("-of: '" + format + "' is not a vector format GDAL can write");
+  GDALDriver* driver = vectorDriver(format);
   CPLStringList dsco;
   for (const std::string& kv : options.datasetCreationOptions) dsco.AddString(kv.c_str());
   CPLErrorReset();
@@ -257,7 +267,11 @@ void writeVectorDataset(const std::string& path, const std::vector<Layer>& layer
   srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   const bool transactions = ds->TestCapability(ODsCTransactions);
   if (transactions) ds->StartTransaction();
+  static std::atomic<long> featuresWritten{0};
+  const long failAfter = faultSetting("write-fail-after");
   for (const Layer& layer : layers) {
+    if (const long delay = faultSetting("write-delay-ms"))
+      std::this_thread::sleep_for(std::chrono::milliseconds(delay));
     CPLStringList lco;
     for (const std::string& kv : options.layerCreationOptions) lco.AddString(kv.c_str());
     OGRLayer* out = ds->CreateLayer(layer.name.c_str(),
@@ -299,6 +313,9 @@ void writeVectorDataset(const std::string& path, const std::vector<Layer>& layer
       }
       if (out->CreateFeature(&f) != OGRERR_NONE)
         throw ioError("cannot write a feature of layer '" + layer.name + "' (" + lastGdalMessage() + ")");
+      if (failAfter > 0 && ++featuresWritten >= failAfter)
+        throw ioError("cannot write a feature of layer '" + layer.name +
+                      "' (fault injected by URBANVEC_FAULT)");
     }
   }
   if (format == "GPKG") {
@@ -315,6 +332,141 @@ void writeVectorDataset(const std::string& path, const std::vector<Layer>& layer
   GDALClose(ds.release());
   if (CPLGetLastErrorType() >= CE_Failure)
     throw ioError("cannot finish '" + path + "' (" + std::string(lastGdalMessage()) + ")");
+}
+
+namespace {
+
+bool equalsIgnoringCase(const std::string& a, const std::string& b) {
+  return EQUAL(a.c_str(), b.c_str());
+}
+
+/// Checks NAME=VALUE creation options against the driver's declared list (names, booleans, integers,
+/// fixed choices), as GDAL itself only warns about them.
+void validateCreationOptions(const char* optionListXml, const std::vector<std::string>& given,
+                             const std::string& flag, const std::string& kind, const std::string& format) {
+  if (given.empty()) return;
+  std::unique_ptr<CPLXMLNode, decltype(&CPLDestroyXMLNode)> root(
+      optionListXml ? CPLParseXMLString(optionListXml) : nullptr, &CPLDestroyXMLNode);
+  std::vector<std::string> known;
+  if (root)
+    for (const CPLXMLNode* o = root->psChild; o; o = o->psNext)
+      if (o->eType == CXT_Element && EQUAL(o->pszValue, "Option"))
+        known.push_back(CPLGetXMLValue(o, "name", ""));
+  for (const std::string& kv : given) {
+    const size_t eq = kv.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw invalidOption(flag + " expects NAME=VALUE, got '" + kv + "'");
+    const std::string name = kv.substr(0, eq);
+    const std::string value = kv.substr(eq + 1);
+    const CPLXMLNode* option = nullptr;
+    if (root)
+      for (const CPLXMLNode* o = root->psChild; o && !option; o = o->psNext)
+        if (o->eType == CXT_Element && EQUAL(o->pszValue, "Option") &&
+            (equalsIgnoringCase(CPLGetXMLValue(o, "name", ""), name) ||
+             equalsIgnoringCase(CPLGetXMLValue(o, "alias", ""), name)))
+          option = o;
+    if (!option) {
+      std::string list;
+      for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+      throw invalidOption(flag + " " + kv + ": " + format + " has no " + kind + " creation option '" + name +
+                          "'" + (list.empty() ? " (it takes none)" : " (it takes " + list + ")"));
+    }
+    const std::string type = CPLGetXMLValue(option, "type", "string");
+    auto refuse = [&](const std::string& expected) {
+      throw invalidOption(flag + " " + kv + ": " + name + " of " + format + " takes " + expected + ", got '" +
+                          value + "'");
+    };
+    if (equalsIgnoringCase(type, "boolean")) {
+      static const char* const kBooleans[] = {"YES", "NO", "TRUE", "FALSE", "ON", "OFF", "1", "0"};
+      if (std::none_of(std::begin(kBooleans), std::end(kBooleans),
+                       [&](const char* b) { return equalsIgnoringCase(b, value); }))
+        refuse("YES or NO");
+    } else if (equalsIgnoringCase(type, "int") || equalsIgnoringCase(type, "integer")) {
+      char* end = nullptr;
+      std::strtoll(value.c_str(), &end, 10);
+      if (value.empty() || *end != '\0') refuse("an integer");
+    } else if (equalsIgnoringCase(type, "string-select")) {
+      std::vector<std::string> choices;
+      for (const CPLXMLNode* v = option->psChild; v; v = v->psNext)
+        if (v->eType == CXT_Element && EQUAL(v->pszValue, "Value") && v->psChild)
+          choices.push_back(v->psChild->pszValue);
+      if (!choices.empty() && std::none_of(choices.begin(), choices.end(), [&](const std::string& c) {
+            return equalsIgnoringCase(c, value);
+          })) {
+        std::string list;
+        for (const std::string& c : choices) list += (list.empty() ? "" : ", ") + c;
+        refuse("one of " + list);
+      }
+    }
+  }
+}
+
+/// Files a driver writes beside the named one (checked before the work, moved with it).
+std::vector<std::string> sideFiles(const std::string& format, const std::string& fileName) {
+  const std::string stem = std::filesystem::path(fileName).stem().string();
+  std::vector<std::string> out;
+  if (format == "ESRI Shapefile")
+    for (const char* ext : {".shp", ".shx", ".dbf", ".prj", ".cpg"}) out.push_back(stem + ext);
+  else if (format == "GML")
+    out.push_back(stem + ".xsd");
+  else if (format == "MapInfo File")
+    for (const char* ext : {".tab", ".dat", ".map", ".id", ".mif", ".mid"}) out.push_back(stem + ext);
+  out.erase(std::remove(out.begin(), out.end(), fileName), out.end());
+  return out;
+}
+
+}  // namespace
+
+VectorOutput::VectorOutput(std::string path, VectorWriteOptions options, std::vector<std::string> layerNames,
+                           OutputRules rules)
+    : path_(std::move(path)), options_(std::move(options)) {
+  options_.format = vectorFormatFor(path_, options_.format);
+  GDALDriver* driver = vectorDriver(options_.format);
+  validateCreationOptions(driver->GetMetadataItem(GDAL_DMD_CREATIONOPTIONLIST),
+                          options_.datasetCreationOptions, "-dsco", "dataset", options_.format);
+  validateCreationOptions(driver->GetMetadataItem(GDAL_DS_LAYER_CREATIONOPTIONLIST),
+                          options_.layerCreationOptions, "-lco", "layer", options_.format);
+  const char* extensions = driver->GetMetadataItem(GDAL_DMD_EXTENSIONS);
+  if (!extensions) extensions = driver->GetMetadataItem(GDAL_DMD_EXTENSION);
+  const CPLStringList formatExtensions(CSLTokenizeString(extensions ? extensions : ""));
+  layerPerFile_ = layerNames.size() > 1 && !driver->GetMetadataItem(GDAL_DCAP_MULTIPLE_VECTOR_LAYERS);
+  if (layerPerFile_) {
+    const std::string ext = lowerExtension(path_);
+    for (int i = 0; i < formatExtensions.size(); ++i)
+      if (!ext.empty() && equalsIgnoringCase(ext.substr(1), formatExtensions[i]))
+        throw invalidOption("-of " + options_.format + " holds one layer per file and " +
+                            std::to_string(layerNames.size()) + " layers are written: give a folder name " +
+                            "instead of '" + path_ + "' (each layer becomes <folder>/<layer>." +
+                            formatExtensions[0] + ")");
+    extension_ = formatExtensions.size() > 0 ? std::string(".") + formatExtensions[0] : std::string();
+    rules.isFolder = true;
+    for (const std::string& layer : layerNames) {
+      rules.entries.push_back(layer + extension_);
+      for (const std::string& side : sideFiles(options_.format, layer + extension_))
+        rules.entries.push_back(side);
+    }
+  } else {
+    rules.isFolder = false;
+    for (const std::string& side :
+         sideFiles(options_.format, std::filesystem::path(path_).filename().string()))
+      rules.entries.push_back(side);
+  }
+  output_ = std::make_unique<AtomicOutput>(path_, std::move(rules));
+}
+
+void VectorOutput::write(const std::vector<Layer>& layers, const std::string& crsWkt) {
+  if (!crsWkt.empty()) options_.crsWkt = crsWkt;
+  if (!layerPerFile_) {
+    writeVectorDataset(output_->tempPath(), layers, options_);
+    return;
+  }
+  for (const Layer& layer : layers)
+    writeVectorDataset((std::filesystem::path(output_->tempPath()) / (layer.name + extension_)).string(),
+                       {layer}, options_);
+}
+
+void VectorOutput::commit(const Progress& progress) {
+  output_->commit(progress);
 }
 
 std::vector<std::string> listVectorLayers(const std::string& path, const std::string& role) {

@@ -2,19 +2,22 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "urbanvec/core/layer.hpp"
+#include "urbanvec/core/progress.hpp"
+#include "urbanvec/io/atomic_output.hpp"
 
 namespace urbanvec::io {
 
 struct VectorWriteOptions {
-  std::string format;                           ///< OGR driver; empty = from the extension (GPKG default)
-  std::vector<std::string> layerCreationOptions;  ///< NAME=VALUE, -lco
+  std::string format;                               ///< OGR driver; empty = from the extension (GPKG default)
+  std::vector<std::string> layerCreationOptions;    ///< NAME=VALUE, -lco
   std::vector<std::string> datasetCreationOptions;  ///< NAME=VALUE, -dsco
-  std::string crsWkt;                           ///< CRS of every layer; empty = none
+  std::string crsWkt;                               ///< CRS of every layer; empty = none
   std::map<std::string, std::string> layerStylesQml;  ///< layer name -> QGIS style (QML), GPKG only
   /// Also store io::defaultStyleFor(name) for standard layer names without an explicit style.
   bool defaultStyles = true;
@@ -26,6 +29,30 @@ std::string vectorFormatFor(const std::string& path, const std::string& requeste
 /// Writes all layers to a new dataset at `path` (the caller makes it atomic). Throws urbanvec::Error.
 void writeVectorDataset(const std::string& path, const std::vector<Layer>& layers,
                         const VectorWriteOptions& options);
+
+/// A vector output taken before any work: the format and its creation options are checked, and the
+/// name is locked and staged (AtomicOutput), so a bad -of/-lco fails at once, not after the work.
+/// A format that holds one layer per file (Shapefile, GeoJSON, FlatGeobuf, CSV...) receiving several
+/// layers writes a folder with one file (set) per layer; naming that folder like a file of the format
+/// (`out.shp`) is refused.
+class VectorOutput {
+ public:
+  /// `layerNames`: the layers the run will write (their names give a folder output's files).
+  VectorOutput(std::string path, VectorWriteOptions options, std::vector<std::string> layerNames,
+               OutputRules rules);
+  /// Writes every layer into the staging place, in `crsWkt` when given (else the options' CRS).
+  void write(const std::vector<Layer>& layers, const std::string& crsWkt = {});
+  /// Moves the written files into place (AtomicOutput::commit).
+  void commit(const Progress& progress = {});
+  const std::string& format() const { return options_.format; }
+
+ private:
+  std::string path_;
+  VectorWriteOptions options_;
+  bool layerPerFile_ = false;  ///< one dataset per layer inside a folder output
+  std::string extension_;      ///< of each per-layer file, with the dot
+  std::unique_ptr<AtomicOutput> output_;
+};
 
 struct VectorReadOptions {
   std::string targetCrs;  ///< reproject to this CRS (WKT or any user string GDAL accepts); empty = keep
@@ -42,7 +69,6 @@ std::vector<std::string> listVectorLayers(const std::string& path, const std::st
 /// Reads one layer (all fields, geometries as plain types), or nothing when the dataset has no layer
 /// of that name. `role` names the input in messages.
 std::optional<LayerRead> readVectorLayer(const std::string& path, const std::string& layerName,
-                                         const std::string& role,
-                                         const VectorReadOptions& options = {});
+                                         const std::string& role, const VectorReadOptions& options = {});
 
 }  // namespace urbanvec::io

@@ -12,9 +12,9 @@
 using namespace urbanvec;
 
 TEST(GeoTransform, RoundTripsNorthUpSouthUpAndRotated) {
-  for (const std::array<double, 6>& c : {std::array<double, 6>{1000, 12, 0, 5000, 0, -12},
-                                         std::array<double, 6>{1000, 12, 0, 5000, 0, 12},
-                                         std::array<double, 6>{1000, 8.48528, 8.48528, 5000, 8.48528, -8.48528}}) {
+  for (const std::array<double, 6>& c :
+       {std::array<double, 6>{1000, 12, 0, 5000, 0, -12}, std::array<double, 6>{1000, 12, 0, 5000, 0, 12},
+        std::array<double, 6>{1000, 8.48528, 8.48528, 5000, 8.48528, -8.48528}}) {
     GeoTransform t{c};
     const Vec2 w = t.pixelToWorld(3.5, 7.25);
     const Vec2 p = t.worldToPixel(w);
@@ -61,7 +61,10 @@ TEST(Utm, ZonesIncludingExceptions) {
 
 TEST(Progress, SubRangesAreMonotonicAndCancel) {
   std::vector<double> seen;
-  Progress root = monotonicProgress([&](double f, std::string_view) { seen.push_back(f); return true; });
+  Progress root = monotonicProgress([&](double f, std::string_view) {
+    seen.push_back(f);
+    return true;
+  });
   Progress second = subProgress(root, 0.5, 1.0);
   reportProgress(subProgress(root, 0.0, 0.5), 1.0, "a");
   reportProgress(second, 0.0, "b");
@@ -92,12 +95,20 @@ TEST(Arguments, ParsesDefaultsRangesAndUsageErrors) {
   EXPECT_THROW(app::parseArguments(spec, {"in", "out", "-bogus"}), app::UsageError);
   EXPECT_THROW(app::parseArguments(spec, {"in"}), app::UsageError);
   EXPECT_THROW(app::parseArguments(spec, {"in", "out", "-tr", "abc"}), app::UsageError);
+  // Out-of-range and non-finite values are usage errors (exit 2), like an unknown enum value.
   try {
     app::parseArguments(spec, {"in", "out", "-tr", "0"});
     FAIL();
-  } catch (const Error& e) {
-    EXPECT_EQ(e.kind(), ErrorKind::InvalidOption);
+  } catch (const app::UsageError& e) {
     EXPECT_STREQ(e.what(), "-tr must be at least 1e-09, got 0");
+  }
+  for (const char* nonFinite : {"nan", "inf", "-inf", "1e999"}) {
+    try {
+      app::parseArguments(spec, {"in", "out", "-tr", nonFinite});
+      ADD_FAILURE() << nonFinite;
+    } catch (const app::UsageError& e) {
+      EXPECT_EQ(std::string(e.what()), std::string("-tr expects a finite number, got '") + nonFinite + "'");
+    }
   }
 }
 
