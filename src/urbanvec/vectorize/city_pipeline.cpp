@@ -257,6 +257,10 @@ CityResult vectorizeCity(const RoadNetwork& network, const Grid<std::uint8_t>& c
     block.external = !info.internal;
     block.hasCulDeSac = info.hasCulDeSac;
     block.roadFacing = facing[i];
+    if (block.roadFacing.empty() && options.islandFrontage) {
+      block.roadFacing.push_back(info.shape.outer);
+      for (const Ring& hole : info.shape.holes) block.roadFacing.push_back(hole);
+    }
     block.obbAspect = info.obb.aspect;
     block.obbDiagonal = info.obb.diagonal;
     block.sim = summarizeSimulatedBlocks(info.simBlockIndices, blocks, simParcels, cells);

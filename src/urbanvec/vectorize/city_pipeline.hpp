@@ -23,6 +23,12 @@ struct CityOptions {
   /// constraint 2), in cells. [INFERENCE] Only absorbs floating-point noise between the block outline
   /// and the pavement it was cut from.
   double roadFacingTolerance = 1e-3;
+  /// [INFERENCE, beyond the documents] A block with no road-facing edge at all (an island of developed
+  /// land that meets no road: a grid without roads, an estate in the fields) takes its whole outline
+  /// as its frontage, so E2 can still split it into its simulated parcels, which then face the open
+  /// land around it. false = such a block stays one parcel (E2 constraint 2 read literally; its
+  /// report says "block has no road-facing boundary").
+  bool islandFrontage = true;
 };
 
 struct CityResult {

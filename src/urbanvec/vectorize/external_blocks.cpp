@@ -122,6 +122,9 @@ ExternalBlocks buildExternalBlocks(const RoadNetwork& network, const MultiPolygo
   }
 
   if (linework.empty()) {
+    // No road and no boundary line (a grid of developed land without roads): the islands are the
+    // only external blocks.
+    if (options.islandBlocks) addIslandBlocks(ctx, city, blockOfCell, options, out);
     reportProgress(progress, 1.0, "external blocks");
     return out;
   }

@@ -4,9 +4,49 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
 #include <unordered_map>
 
 namespace urbanvec::vectorize {
+
+std::string peopleText(double people) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.1f", people);
+  std::string s = text;
+  if (s.size() > 2 && s.compare(s.size() - 2, 2, ".0") == 0) s.resize(s.size() - 2);
+  if (s == "-0") s = "0";
+  return s + (s == "1" ? " person" : " people");
+}
+
+std::string unattachedParcelsWarning(const ParcelLoading& loading, bool majorityBlock) {
+  if (loading.unattached == 0) return {};
+  static const char* const land[4] = {"open land (unused cells)", "road", "water", "reserved land"};
+  std::string s = std::to_string(loading.unattached) + " input parcels (" +
+                  peopleText(loading.unattachedPopulation) + ")" +
+                  (majorityBlock ? " lie mostly" : " have their first cell");
+  int kinds = 0, only = 0;
+  for (int k = 0; k < 4; ++k)
+    if (loading.unattachedOn[k] > 0) ++kinds, only = k;
+  if (kinds == 1) {
+    s += std::string(" on ") + land[only] + " outside every block";
+  } else {
+    s += " outside every block (";
+    bool first = true;
+    for (int k = 0; k < 4; ++k)
+      if (loading.unattachedOn[k] > 0) {
+        s += (first ? "" : ", ") + std::to_string(loading.unattachedOn[k]) + " on " + land[k];
+        first = false;
+      }
+    s += ")";
+  }
+  s += ": no block takes them, so they are left out of the parcels layer";
+  // peopleText rounds: "no population is lost" only when there is none at all.
+  if (loading.unattachedPopulation > 0.0)
+    s += " with their " + peopleText(loading.unattachedPopulation);
+  else
+    s += " and no population is lost";
+  return s;
+}
 
 ParcelLoading loadParcels(const VectorizeInput& input, const Grid<std::int32_t>& blockOf,
                           std::vector<SimBlock>& blocks, const Progress& progress,
@@ -81,7 +121,22 @@ ParcelLoading loadParcels(const VectorizeInput& input, const Grid<std::int32_t>&
         run = end;
       }
     }
-    if (p.simBlock < 0) ++out.unattached;
+    if (p.simBlock < 0) {
+      ++out.unattached;
+      out.unattachedPopulation += p.population;
+      // Only open land, road, water and reserved land lie outside every block (A2).
+      // Under the documents' rule the first cell is the one outside every block.
+      std::array<int, 4> land{};
+      for (int i : p.patches) {
+        if (blockOf.cells[i] >= 0 || (!options.majorityBlock && i != p.patches.front())) continue;
+        const std::uint8_t u = input.landUse.cells[i];
+        ++land[isRoadCode(u)                                       ? 1
+               : u == static_cast<std::uint8_t>(LandUse::Water)    ? 2
+               : u == static_cast<std::uint8_t>(LandUse::Reserved) ? 3
+                                                                   : 0];
+      }
+      ++out.unattachedOn[std::max_element(land.begin(), land.end()) - land.begin()];
+    }
   }
   std::sort(out.parcels.begin(), out.parcels.end(),
             [](const SimParcel& a, const SimParcel& b) { return a.id < b.id; });

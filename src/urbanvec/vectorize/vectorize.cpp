@@ -1,6 +1,7 @@
 // The pipeline of spec §1, stages A1–A5 and B1–B6, each timed and measured.
 #include "urbanvec/vectorize/vectorize.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <functional>
@@ -61,6 +62,63 @@ std::string counts(const T&... parts) {
   std::ostringstream s;
   ((s << parts), ...);
   return s.str();
+}
+
+/// Every person of the input reaches a parcel of the parcels layer, or the warnings say where the
+/// others went (the A5 warning already names the parcels outside every block).
+void populationWarnings(const VectorizeInput& input, VectorizeResult& result) {
+  double density = 0, densityWithoutParcel = 0;
+  std::size_t cellsWithoutParcel = 0;
+  const bool hasParcels = input.parcelIds.size() != 0;
+  for (size_t i = 0; i < input.density.cells.size(); ++i) {
+    density += input.density.cells[i];
+    if (hasParcels && input.parcelIds.cells[i] == 0 && input.density.cells[i] > 0) {
+      densityWithoutParcel += input.density.cells[i];
+      ++cellsWithoutParcel;
+    }
+  }
+  if (!hasParcels && density > 0)
+    result.warnings.push_back("the density grid holds " + peopleText(density) +
+                              ", but without a parcels grid (-parcels) there are no input parcels to "
+                              "carry them: " +
+                              (result.city.blocks.blockInfo.empty()
+                                   ? "the parcels layer is empty (the grid has no blocks)"
+                                   : "each block is one undeveloped parcel with population 0"));
+  // With a parcel table the table's population replaces the density grid's.
+  if (input.parcelTable.empty() && cellsWithoutParcel > 0)
+    result.warnings.push_back(peopleText(densityWithoutParcel) + " of the density grid lie on " +
+                              std::to_string(cellsWithoutParcel) +
+                              (cellsWithoutParcel == 1 ? " cell" : " cells") +
+                              " without a parcel (id 0) and reach no parcel of the parcels layer");
+  double inBlocks = 0, unmatched = 0;
+  const std::vector<int>& vectorBlockOfSim = result.city.blocks.matching.vectorBlockOfSim;
+  for (const SimParcel& p : result.parcels) {
+    if (p.simBlock < 0) continue;
+    inBlocks += p.population;
+    if (static_cast<size_t>(p.simBlock) >= vectorBlockOfSim.size() || vectorBlockOfSim[p.simBlock] < 0)
+      unmatched += p.population;
+  }
+  double kept = 0, ignored = 0;
+  for (const parcels::BlockParcels& b : result.city.parcels.blocks) {
+    ignored += b.report.ignoredPopulation;
+    for (const parcels::VectorParcel& parcel : b.parcels) kept += parcel.population;
+  }
+  const double lost = inBlocks - kept;
+  if (!(lost > 1e-6 * std::max(1.0, inBlocks))) return;
+  std::string why;
+  if (unmatched > 0) why += peopleText(unmatched) + " in simulated blocks that no vector block takes";
+  if (ignored > 0)
+    why += (why.empty() ? "" : ", ") + peopleText(ignored) +
+           " of land uses that no parcel of their block gets (vectorize_report ignored_population)";
+  const double unexplained = lost - unmatched - ignored;
+  if (unexplained > 1e-6 * std::max(1.0, inBlocks))
+    why += (why.empty() ? "" : ", and ") + peopleText(unexplained) + " lost for no reason the stages record";
+  // peopleText(x) ends in " people" (or " person"): "12 of the 15 people".
+  std::string keptNumber = peopleText(kept);
+  keptNumber.resize(keptNumber.rfind(' '));
+  result.warnings.push_back("the parcels layer holds " + keptNumber + " of the " + peopleText(inBlocks) +
+                            " of the input parcels inside blocks" +
+                            (why.empty() ? std::string() : "; the others are " + why));
 }
 
 }  // namespace
@@ -131,20 +189,16 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
     if (s.closedLoops > 0)
       result.warnings.push_back(
           counts(s.closedLoops,
-                 " closed boundaries between undeveloped land and external blocks meet no road and "
-                 "got no perimeter line (islands become blocks of their own outline)"));
+                 s.closedLoops == 1 ? " closed boundary between undeveloped land and external blocks meets"
+                                    : " closed boundaries between undeveloped land and external blocks meet",
+                 " no road and got no perimeter line (islands become blocks of their own outline)"));
     return counts(s.lines, " perimeter lines, ", s.closedLoops, " closed loops skipped");
   });
   run("A5", "parcels", 0.03, false, [&](const Progress& p) {
     ParcelLoading pl = loadParcels(input, result.blockOf, result.blocks, p, options.parcelLoading);
     result.parcels = std::move(pl.parcels);
     if (pl.unattached > 0)
-      result.warnings.push_back(counts(pl.unattached,
-                                       options.parcelLoading.majorityBlock
-                                           ? " parcels lie mostly outside every block"
-                                           : " parcels have their first patch outside every block",
-                                       " (road, water, reserved, or open land beyond the external "
-                                       "blocks) and are attached to no block"));
+      result.warnings.push_back(unattachedParcelsWarning(pl, options.parcelLoading.majorityBlock));
     return counts(result.parcels.size(), " parcels, ", pl.unattached, " unattached, ", pl.derivedFromRaster,
                   " derived from the rasters");
   });
@@ -236,6 +290,7 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
                             result.city.blocks.stats.underPavement, " left under pavement");
     result.stages.push_back(report);
     for (const Layer& l : result.city.layers) result.layers.push_back(l);
+    populationWarnings(input, result);
   }
   reportProgress(progress, 1.0, "done");
   return result;

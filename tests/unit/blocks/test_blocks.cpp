@@ -540,6 +540,27 @@ TEST(ExternalBlocks, StraightBoundaryLineBetweenTwoDeadEndsIsKeptAndAnIslandGets
   EXPECT_EQ(n.stats.failsafeUses, 1);
 }
 
+TEST(ExternalBlocks, AGridWithoutRoadsIsOneIslandBlock) {
+  // Issue 15: a grid of developed land without any road gives no pavement and no boundary line; its
+  // one external simulated block is an island and still gets its block, the whole grid with
+  // smoothed corners.
+  const TestCity t = makeCity(6, 5, [](int, int) { return LandUse::Residential; });
+  ASSERT_EQ(t.city.blocks.size(), 1u);
+  const RoadNetwork none;
+  const BlocksResult r = vectorizeBlocks(none, t.city, t.spec);
+  ASSERT_EQ(r.blockInfo.size(), 1u);
+  EXPECT_FALSE(r.blockInfo[0].internal);
+  EXPECT_GT(r.blockInfo[0].areaCells, 28.0);
+  EXPECT_LT(r.blockInfo[0].areaCells, 30.0);
+  ASSERT_EQ(r.blockInfo[0].simBlockIds.size(), 1u);
+  EXPECT_EQ(r.blockInfo[0].simBlockIds[0], t.city.blocks[0].id);
+  EXPECT_EQ(r.stats.failsafeUses, 0);
+  EXPECT_EQ(r.pavement.features.size(), 0u);
+  // Open land only: no block, and nothing breaks.
+  const TestCity open = makeCity(6, 5, [](int, int) { return LandUse::Unused; });
+  EXPECT_EQ(vectorizeBlocks(none, open.city, open.spec).blockInfo.size(), 0u);
+}
+
 TEST(ExternalBlocks, TrappedLineRuleNeedsBothEndsAndMoreThanHalf) {
   EXPECT_TRUE(boundaryLineTrappedInside({true, false, true, true, true}, 0.5));
   EXPECT_FALSE(boundaryLineTrappedInside({true, false, false, true}, 0.5));  // exactly 50%

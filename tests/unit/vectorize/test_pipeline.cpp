@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 
 #include "test_grids.hpp"
 #include "urbanvec/core/error.hpp"
@@ -75,7 +76,8 @@ TEST(Pipeline, SmallCityGivesCleanConnectedRoadsCoveringEveryRoadCell) {
       double best = 1e9;
       for (const auto& [a, b] : pieces) best = std::min(best, distanceToSegment(centre, a, b));
       far += best > 15.0;
-      if (best > 15.0) ADD_FAILURE() << "road cell " << col << "," << row << " is " << best / 10 << " cells away";
+      if (best > 15.0)
+        ADD_FAILURE() << "road cell " << col << "," << row << " is " << best / 10 << " cells away";
     }
   EXPECT_EQ(far, 0);
   // Fields and classes.
@@ -86,12 +88,14 @@ TEST(Pipeline, SmallCityGivesCleanConnectedRoadsCoveringEveryRoadCell) {
   EXPECT_TRUE(classes.count("primary"));
   EXPECT_TRUE(classes.count("secondary"));
   EXPECT_TRUE(classes.count("perimeter"));
-  for (const char* field : {"road_id", "from_node", "to_node", "length"}) EXPECT_GE(roads.fieldIndex(field), 0);
+  for (const char* field : {"road_id", "from_node", "to_node", "length"})
+    EXPECT_GE(roads.fieldIndex(field), 0);
   for (const char* field : {"node_id", "kind", "degree"}) EXPECT_GE(nodes.fieldIndex(field), 0);
   // Per-stage reports for A2..B6 and the output.
   std::vector<std::string> ids;
   for (const StageReport& s : r.stages) ids.push_back(s.id);
-  const std::vector<std::string> roadStages{"A2", "A3", "A4", "A4.8", "A5", "B1", "B2", "B3", "B4", "B5", "B6"};
+  const std::vector<std::string> roadStages{"A2", "A3", "A4", "A4.8", "A5", "B1",
+                                            "B2", "B3", "B4", "B5",   "B6"};
   ASSERT_GE(ids.size(), roadStages.size());
   EXPECT_EQ(std::vector<std::string>(ids.begin(), ids.begin() + roadStages.size()), roadStages);
 }
@@ -119,7 +123,8 @@ TEST(Pipeline, BadGridsGiveWarningsOrClearErrorsNotCrashes) {
   EXPECT_NE(all.warnings[0].find("every cell"), std::string::npos);
   EXPECT_TRUE(checkRoadNetwork(all.layers[0], all.layers[1]).ok());
   // 1x1 grids of every class.
-  for (const char* one : {"s", "P", "r", "."}) EXPECT_NO_THROW(vectorize::vectorize(drawInput({one}), {})) << one;
+  for (const char* one : {"s", "P", "r", "."})
+    EXPECT_NO_THROW(vectorize::vectorize(drawInput({one}), {})) << one;
   // Negative parcel ids.
   VectorizeInput neg = drawInput({"sss", "srs"});
   neg.parcelIds = Grid<std::int32_t>(3, 2, 0);
@@ -129,9 +134,66 @@ TEST(Pipeline, BadGridsGiveWarningsOrClearErrorsNotCrashes) {
     FAIL() << "negative id accepted";
   } catch (const Error& e) {
     EXPECT_EQ(e.kind(), ErrorKind::InvalidInput);
-    EXPECT_STREQ(e.what(),
-                 "the parcel grid holds negative parcel id -4 at column 1, row 1 (ids must be >= 0, 0 = no parcel)");
+    EXPECT_STREQ(
+        e.what(),
+        "the parcel grid holds negative parcel id -4 at column 1, row 1 (ids must be >= 0, 0 = no parcel)");
   }
+}
+
+namespace {
+
+const Layer& layerNamed(const VectorizeResult& r, const std::string& name) {
+  for (const Layer& l : r.layers)
+    if (l.name == name) return l;
+  throw std::runtime_error("no layer " + name);
+}
+
+double populationOf(const Layer& parcels) {
+  const int field = parcels.fieldIndex("population");
+  double sum = 0;
+  for (const Feature& f : parcels.features) sum += std::get<double>(f.values[static_cast<size_t>(field)]);
+  return sum;
+}
+
+}  // namespace
+
+TEST(Pipeline, AGridOfDevelopedLandWithoutRoadsIsOneBlockWithItsParcelsAndPeople) {
+  // Issue 15: 12 x 10 residential cells, four parcels of 6 x 5 cells, 2 people per cell.
+  VectorizeInput in = drawInput(blank(12, 10));
+  in.parcelIds = Grid<std::int32_t>(12, 10, 0);
+  for (int r = 0; r < 10; ++r)
+    for (int c = 0; c < 12; ++c) in.parcelIds.at(c, r) = 1 + (r / 5) * 2 + c / 6;
+  in.density = Grid<float>(12, 10, 2.0f);
+  const VectorizeResult r = vectorize::vectorize(in, {});
+  const Layer& blocks = layerNamed(r, "blocks");
+  const Layer& parcels = layerNamed(r, "parcels");
+  ASSERT_EQ(blocks.features.size(), 1u);
+  EXPECT_EQ(parcels.features.size(), 4u);
+  EXPECT_NEAR(populationOf(parcels), 240.0, 1e-9);
+  EXPECT_EQ(r.warnings,
+            (std::vector<std::string>{
+                "the land-use grid has no road cells (codes 2 and 3): the road layers are empty",
+                "1 closed boundary between undeveloped land and external blocks meets no road and got "
+                "no perimeter line (islands become blocks of their own outline)"}));
+  // Without a parcels grid the density has no parcel to go to, and the warning says so.
+  in.parcelIds = {};
+  const VectorizeResult n = vectorize::vectorize(in, {});
+  ASSERT_EQ(layerNamed(n, "parcels").features.size(), 1u);
+  EXPECT_EQ(populationOf(layerNamed(n, "parcels")), 0.0);
+  ASSERT_EQ(n.warnings.size(), 3u);
+  EXPECT_EQ(
+      n.warnings[2],
+      "the density grid holds 240 people, but without a parcels grid (-parcels) there are no input parcels "
+      "to carry them: each block is one undeveloped parcel with population 0");
+  // Density on cells without a parcel (and no table) is reported too.
+  in.parcelIds = Grid<std::int32_t>(12, 10, 1);
+  in.parcelIds.at(0, 0) = 0;
+  const VectorizeResult hole = vectorize::vectorize(in, {});
+  EXPECT_NEAR(populationOf(layerNamed(hole, "parcels")), 238.0, 1e-9);
+  ASSERT_EQ(hole.warnings.size(), 3u);
+  EXPECT_EQ(hole.warnings[2],
+            "2 people of the density grid lie on 1 cell without a parcel (id 0) and reach no parcel of the "
+            "parcels layer");
 }
 
 TEST(Output, WorldCoordinatesFollowAnyGeotransform) {
@@ -176,7 +238,7 @@ TEST(Output, SegmentsRunBetweenIntersectionsAndDeadEndsAndShareTheirNodes) {
   spec.width = spec.height = 10;
   const std::vector<Layer> layers = roadLayers(buildRoadNetwork(g), spec);
   ASSERT_EQ(layers[0].features.size(), 4u);  // west, east, x-s1 (secondary class), s1-s2 (primary)
-  EXPECT_EQ(layers[1].features.size(), 5u);   // intersection, 3 dead ends, 1 connection
+  EXPECT_EQ(layers[1].features.size(), 5u);  // intersection, 3 dead ends, 1 connection
   EXPECT_TRUE(checkRoadNetwork(layers[0], layers[1]).ok());
 }
 
@@ -244,10 +306,11 @@ TEST(GridInput, RastersMustShareTheGridAndHoldClassCodes) {
     io::loadGridInput({floatPath, "", "", "", ""});
     FAIL();
   } catch (const Error& e) {
-    EXPECT_EQ(std::string(e.what()),
-              "land-use raster '" + floatPath +
-                  "' (Float32) holds value 0.5 at column 0, row 0, which is not a land-use class code (0..8, 255 = "
-                  "nodata); map its values to classes with -classes <csv>");
+    EXPECT_EQ(
+        std::string(e.what()),
+        "land-use raster '" + floatPath +
+            "' (Float32) holds value 0.5 at column 0, row 0, which is not a land-use class code (0..8, 255 = "
+            "nodata); map its values to classes with -classes <csv>");
   }
   // The same raster mapped through -classes.
   const std::string classesPath = (dir / "classes.csv").string();
@@ -266,8 +329,10 @@ TEST(GridInput, RastersMustShareTheGridAndHoldClassCodes) {
     io::loadGridInput({luPath, "", idsPath, tablePath, ""});
     FAIL();
   } catch (const Error& e) {
-    EXPECT_EQ(std::string(e.what()), "parcel table '" + tablePath + "' line 3 names parcel id 8, which is not in the "
-                                     "parcels raster '" + idsPath + "'");
+    EXPECT_EQ(std::string(e.what()), "parcel table '" + tablePath +
+                                         "' line 3 names parcel id 8, which is not in the "
+                                         "parcels raster '" +
+                                         idsPath + "'");
   }
   std::filesystem::remove_all(dir);
 }

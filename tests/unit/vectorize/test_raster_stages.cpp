@@ -1,6 +1,8 @@
 // Stages A2, A3, A4.8 and A5 on small drawn grids with known answers (spec §11.1).
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include "test_grids.hpp"
 #include "urbanvec/vectorize/parcel_loading.hpp"
 #include "urbanvec/vectorize/patch_cleaning.hpp"
@@ -26,8 +28,10 @@ TEST(RawBlocks, EnclosedLandIsInternalWithItsUnusedPatchesAndBorderLandIsExterna
     (b.internal ? internal : external)++;
     for (int i : b.patches) {
       const int c = i % cells.width, r = i / cells.width;
-      if (b.internal) EXPECT_FALSE(c == 0 || r == 0 || c == cells.width - 1 || r == cells.height - 1);
-      else EXPECT_NE(cells.cells[i], static_cast<std::uint8_t>(LandUse::Unused));
+      if (b.internal)
+        EXPECT_FALSE(c == 0 || r == 0 || c == cells.width - 1 || r == cells.height - 1);
+      else
+        EXPECT_NE(cells.cells[i], static_cast<std::uint8_t>(LandUse::Unused));
     }
   }
   // Inside the ring, water splits the enclosed land into two internal blocks ("two or more blocks
@@ -247,4 +251,50 @@ TEST(ParcelLoading, ATieBetweenABlockAndNoBlockGoesToTheBlock) {
   ASSERT_EQ(pl.parcels.size(), 1u);
   EXPECT_EQ(pl.parcels[0].simBlock, rb.blockOf.at(4, 1));
   EXPECT_EQ(pl.unattached, 0u);
+}
+
+TEST(ParcelLoading, ParcelsOutsideEveryBlockAreCountedByTheLandTheyLieOnWithTheirPeople) {
+  // Issue 15: one block (the residential cells); parcels on open land, water, road and reserved land.
+  VectorizeInput in = drawInput({
+      "rrr..",
+      "rrr..",
+      "sssss",
+      "wwxx.",
+  });
+  in.parcelIds = Grid<std::int32_t>(5, 4, 0);
+  in.parcelIds.at(0, 0) = 1;  // in the block
+  in.parcelIds.at(3, 0) = 2;  // open land
+  in.parcelIds.at(4, 1) = 2;
+  in.parcelIds.at(0, 3) = 3;  // water
+  in.parcelIds.at(2, 2) = 4;  // road
+  in.parcelIds.at(2, 3) = 5;  // reserved
+  in.parcelIds.at(4, 0) = 6;  // open land
+  in.density = Grid<float>(5, 4, 0.0f);
+  in.density.at(0, 3) = 2.5f;
+  RawBlocks rb = buildRawBlocks(in.landUse, {});
+  ParcelLoading pl = loadParcels(in, rb.blockOf, rb.blocks);
+  EXPECT_EQ(pl.unattached, 5u);
+  EXPECT_DOUBLE_EQ(pl.unattachedPopulation, 2.5);
+  EXPECT_EQ(pl.unattachedOn, (std::array<std::size_t, 4>{2, 1, 1, 1}));
+  EXPECT_EQ(unattachedParcelsWarning(pl, true),
+            "5 input parcels (2.5 people) lie mostly outside every block (2 on open land (unused cells), "
+            "1 on road, 1 on water, 1 on reserved land): no block takes them, so they are left out of the "
+            "parcels layer with their 2.5 people");
+  // The sample grids' case: only empty plots on open land.
+  pl.unattached = 210;
+  pl.unattachedPopulation = 0.0;
+  pl.unattachedOn = {210, 0, 0, 0};
+  EXPECT_EQ(unattachedParcelsWarning(pl, true),
+            "210 input parcels (0 people) lie mostly on open land (unused cells) outside every block: no "
+            "block takes them, so they are left out of the parcels layer and no population is lost");
+  EXPECT_EQ(
+      unattachedParcelsWarning(pl, false),
+      "210 input parcels (0 people) have their first cell on open land (unused cells) outside every "
+      "block: no block takes them, so they are left out of the parcels layer and no population is lost");
+  pl.unattached = 0;
+  EXPECT_EQ(unattachedParcelsWarning(pl, true), "");
+  EXPECT_EQ(peopleText(1.0), "1 person");
+  EXPECT_EQ(peopleText(0.04), "0 people");
+  EXPECT_EQ(peopleText(6250.0), "6250 people");
+  EXPECT_EQ(peopleText(54197.78), "54197.8 people");
 }
