@@ -198,6 +198,12 @@ unset URBANVEC_FAULT
 expect_no_temp .
 expect_no_temp grid
 
+# --- the same input gives the same bytes, whatever the thread count or the time of the run ---------
+run_cmd vectorize -q -threads 1 landuse.tif same1.gpkg
+sleep 1.1  # GeoPackage stamps tables with the time of writing unless the writer fixes it
+run_cmd vectorize -q -threads 2 landuse.tif same2.gpkg
+expect_eq "$(sha1sum <same2.gpkg)" "$(sha1sum <same1.gpkg)" "bytes of two runs"
+
 # --- usage errors exit 2, enum values in --help -----------------------------------------------------
 run_cmd vectorize -tries -1 landuse.tif x.gpkg
 expect_status 2

@@ -257,6 +257,10 @@ void writeVectorDataset(const std::string& path, const std::vector<Layer>& layer
                         const VectorWriteOptions& options) {
   const std::string format = vectorFormatFor(path, options.format);
   GDALDriver* driver = vectorDriver(format);
+  // GeoPackage stamps each table with the time of writing; a fixed stamp keeps the same input and
+  // seed giving byte-identical files (a user's own OGR_CURRENT_DATE wins).
+  if (!CPLGetConfigOption("OGR_CURRENT_DATE", nullptr))
+    CPLSetConfigOption("OGR_CURRENT_DATE", "2026-01-01T00:00:00.000Z");
   CPLStringList dsco;
   for (const std::string& kv : options.datasetCreationOptions) dsco.AddString(kv.c_str());
   CPLErrorReset();
