@@ -3,7 +3,6 @@
 set -u
 : "${URBANVEC:?URBANVEC must point at the built program}"
 : "${URBANVEC_SOURCE_DIR:?URBANVEC_SOURCE_DIR must point at the repository}"
-SHARED_DIR="${URBANVEC_SOURCE_DIR}/../shared"
 SAMPLE_DIR="${URBANVEC_SOURCE_DIR}/sample_data"
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
