@@ -435,14 +435,18 @@ VectorOutput::VectorOutput(std::string path, VectorWriteOptions options, std::ve
   const CPLStringList formatExtensions(CSLTokenizeString(extensions ? extensions : ""));
   layerPerFile_ = layerNames.size() > 1 && !driver->GetMetadataItem(GDAL_DCAP_MULTIPLE_VECTOR_LAYERS);
   if (layerPerFile_) {
+    // The extension named like the format where there is one (GeoJSON: .geojson rather than .json).
+    std::string chosen = formatExtensions.size() > 0 ? formatExtensions[0] : "";
+    for (int i = 0; i < formatExtensions.size(); ++i)
+      if (equalsIgnoringCase(formatExtensions[i], options_.format)) chosen = formatExtensions[i];
+    extension_ = chosen.empty() ? std::string() : "." + chosen;
     const std::string ext = lowerExtension(path_);
     for (int i = 0; i < formatExtensions.size(); ++i)
       if (!ext.empty() && equalsIgnoringCase(ext.substr(1), formatExtensions[i]))
         throw invalidOption("-of " + options_.format + " holds one layer per file and " +
                             std::to_string(layerNames.size()) + " layers are written: give a folder name " +
-                            "instead of '" + path_ + "' (each layer becomes <folder>/<layer>." +
-                            formatExtensions[0] + ")");
-    extension_ = formatExtensions.size() > 0 ? std::string(".") + formatExtensions[0] : std::string();
+                            "instead of '" + path_ + "' (each layer becomes <folder>/<layer>" + extension_ +
+                            ")");
     rules.isFolder = true;
     for (const std::string& layer : layerNames) {
       rules.entries.push_back(layer + extension_);
