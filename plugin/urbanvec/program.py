@@ -1,5 +1,8 @@
 """Finding the `urbanvec` program and reading its machine-readable usage.
 
+The program is the first of these that is an executable answering `--json-usage`: the Processing
+setting, <prefix>/bin/urbanvec when `cmake --install` put this plugin under <prefix>, then PATH.
+
 The provider builds its algorithms from `urbanvec --json-usage`, so parameter names, defaults,
 bounds and help always match the installed program. The document is cached on disk per program
 path, modification time and size, which keeps QGIS start-up from running the program each time.
@@ -25,23 +28,24 @@ class ProgramNotFound(Exception):
     pass
 
 
-def _is_executable(path):
-    return bool(path) and os.path.isfile(path) and os.access(path, os.X_OK)
+#: Where users set the program, as the Processing options dialog shows it.
+SETTING_PLACE = 'Settings > Options > Processing > Providers > urbanvec > urbanvec program'
+#: Where `cmake --install` puts this plugin under its prefix (CMakeLists.txt: URBANVEC_QGIS_PLUGIN_DIR,
+#: default ${CMAKE_INSTALL_DATADIR}/qgis/python/plugins); the program goes to <prefix>/bin.
+INSTALLED_PLUGIN_DIR = ('share', 'qgis', 'python', 'plugins', 'urbanvec')
 
 
-def installed_candidates():
-    """Where `cmake --install` puts the program, seen from where it put this plugin.
+def plugin_folder():
+    return os.path.dirname(os.path.abspath(__file__))
 
-    The plugin lives in <prefix>/share/qgis/python/plugins/urbanvec, the program in <prefix>/bin.
-    """
-    here = os.path.dirname(os.path.abspath(__file__))
-    prefix = os.path.normpath(os.path.join(here, *([os.pardir] * 5)))
-    candidates = [os.path.join(prefix, 'bin', 'urbanvec'), '/usr/local/bin/urbanvec', '/usr/bin/urbanvec']
-    unique = []
-    for c in candidates:
-        if c not in unique:
-            unique.append(c)
-    return unique
+
+def install_prefix(folder=None):
+    """The prefix `cmake --install` put this plugin under, or None when the plugin lies elsewhere
+    (a source tree, a profile's plugin folder, an unpacked zip)."""
+    parts = os.path.normpath(folder or plugin_folder()).split(os.sep)
+    if tuple(parts[-len(INSTALLED_PLUGIN_DIR):]) != INSTALLED_PLUGIN_DIR:
+        return None
+    return os.sep.join(parts[:-len(INSTALLED_PLUGIN_DIR)]) or os.sep
 
 
 def configured_program():
@@ -50,27 +54,72 @@ def configured_program():
     return str(value or '').strip()
 
 
-def find_program():
-    """The program to run: the Processing setting, else PATH, else the installed location.
+def _unusable(path):
+    """Why `path` cannot be the program, or None when it is an executable file."""
+    if not os.path.exists(path):
+        return '{} does not exist'.format(path)
+    if not os.path.isfile(path):
+        return '{} is not a file'.format(path)
+    if not os.access(path, os.X_OK):
+        return '{} is not executable'.format(path)
+    return None
 
-    Raises ProgramNotFound with a sentence naming every place looked at.
-    """
+
+def _candidates():
+    """(place, path, why there is no path) in search order: the setting, the install prefix, PATH."""
     configured = configured_program()
+    setting = 'the plugin setting ({})'.format(SETTING_PLACE)
     if configured:
-        if _is_executable(configured):
-            return os.path.abspath(configured)
-        raise ProgramNotFound(
-            'the urbanvec program set in Processing options ({}) does not exist or is not executable'.format(
-                configured))
-    on_path = shutil.which('urbanvec')
-    if on_path:
-        return os.path.abspath(on_path)
-    for candidate in installed_candidates():
-        if _is_executable(candidate):
-            return candidate
-    raise ProgramNotFound(
-        'the urbanvec program was not found: set its path in Settings > Options > Processing > Providers > '
-        'urbanvec, or put it on PATH (looked in PATH and {})'.format(', '.join(installed_candidates())))
+        yield setting, os.path.abspath(os.path.expanduser(configured)), None
+    else:
+        yield setting, None, 'not set'
+    prefix = install_prefix()
+    if prefix:
+        yield 'the install prefix {}'.format(prefix), os.path.join(prefix, 'bin', 'urbanvec'), None
+    else:
+        yield 'the install prefix', None, 'none, this plugin ({}) was not installed by cmake --install'.format(
+            plugin_folder())
+    search_path = os.environ.get('PATH', '')
+    on_path = shutil.which('urbanvec', path=search_path)
+    yield 'PATH ({})'.format(search_path), on_path and os.path.abspath(on_path), 'no urbanvec in its folders'
+
+
+def not_found_message(looked):
+    """The one message shown when no candidate works; `looked` holds one line per place looked at."""
+    return ('No usable urbanvec program was found, so the urbanvec provider has no algorithms. '
+            'Looked in this order:\n' + ''.join('  {}. {}\n'.format(i + 1, line) for i, line in enumerate(looked)) +
+            'To fix it, set the path of the urbanvec program in {}, or put the folder that holds urbanvec on PATH '
+            'and restart QGIS.'.format(SETTING_PLACE))
+
+
+def resolve(cache_file=None):
+    """The program to run and its usage document: the first of the Processing setting, the install
+    prefix (<prefix>/bin/urbanvec next to a CMake-installed plugin) and PATH that is an executable
+    answering `--json-usage`.
+
+    Returns (program, usage, skipped): `skipped` names the candidates that were set but did not work.
+    Raises ProgramNotFound with not_found_message() when none works.
+    """
+    looked, skipped = [], []
+    for place, path, why_none in _candidates():
+        if path is None:
+            looked.append('{}: {}'.format(place, why_none))
+            continue
+        problem = _unusable(path)
+        if problem is None:
+            try:
+                usage, _ = load_usage(path, cache_file)
+                return path, usage, skipped
+            except ProgramNotFound as e:
+                problem = str(e)
+        looked.append('{}: {}'.format(place, problem))
+        skipped.append(looked[-1])
+    raise ProgramNotFound(not_found_message(looked))
+
+
+def find_program():
+    """The program to run (see resolve()); raises ProgramNotFound naming every place looked at."""
+    return resolve()[0]
 
 
 def cache_path():
@@ -91,8 +140,9 @@ def run_json_usage(program):
     except (OSError, subprocess.TimeoutExpired) as e:
         raise ProgramNotFound('cannot run {} --json-usage: {}'.format(program, e))
     if completed.returncode != 0:
-        raise ProgramNotFound('{} --json-usage failed (exit {}): {}'.format(
-            program, completed.returncode, completed.stderr.decode('utf-8', 'replace').strip()))
+        said = ' '.join(completed.stderr.decode('utf-8', 'replace').split())
+        raise ProgramNotFound('{} --json-usage failed (exit status {}){}'.format(
+            program, completed.returncode, ': ' + said if said else ''))
     try:
         document = json.loads(completed.stdout.decode('utf-8'))
     except ValueError as e:

@@ -13,7 +13,7 @@ import re
 import shutil
 
 from qgis.PyQt.QtCore import QProcess, QProcessEnvironment
-from qgis.core import QgsMessageLog, Qgis, QgsProcessingException
+from qgis.core import QgsApplication, QgsMessageLog, Qgis, QgsProcessingException
 
 #: Milliseconds between cancellation checks while the program runs.
 POLL_INTERVAL_MS = 100
@@ -24,9 +24,25 @@ START_TIMEOUT_MS = 30000
 
 EXIT_CANCELLED = 3
 
-_PROGRESS = re.compile(r'^PROGRESS\s+([0-9]+(?:\.[0-9]*)?)\s*(.*)$')
+_PROGRESS = re.compile(r'^PROGRESS\s+([0-9]+(?:\.[0-9]*)?)(?:\s+(.*))?$')
 _ERROR = re.compile(r'^ERROR(?:\s+\d+)?:\s*(.*)$')
 _WARNING = re.compile(r'^Warning(?:\s+\d+)?:\s*(.*)$')
+
+
+def parse_progress(line):
+    """(percent, stage) of a `PROGRESS <percent> <stage>` line (percent at most 100, stage as words
+    separated by single spaces, '' when absent), or None for any other line."""
+    match = _PROGRESS.match(line)
+    if not match:
+        return None
+    return min(100.0, float(match.group(1))), ' '.join((match.group(2) or '').split())
+
+
+def on_console():
+    """True inside qgis_process, whose feedback prints progress as a bar of ticks ('0...10...20')
+    without a newline, so that a text printed next would be glued to the last tick ('10parcels')."""
+    app = QgsApplication.instance()
+    return app is not None and app.platform() == 'qgis_process'
 
 
 def quote_for_log(args):
@@ -65,7 +81,7 @@ class _LineSplitter:
 class ProgramRun:
     """One run of the program; `run()` returns the exit code or raises QgsProcessingException."""
 
-    def __init__(self, program, arguments, feedback, temporary_outputs=()):
+    def __init__(self, program, arguments, feedback, temporary_outputs=(), console=None):
         self.program = program
         self.arguments = list(arguments)
         self.feedback = feedback
@@ -77,23 +93,37 @@ class ProgramRun:
         self.stage = ''
         self.cancelled = False
         self.terminate_grace_ms = TERMINATE_GRACE_MS
+        #: Texts are given a line of their own after progress ticks (qgis_process); see on_console().
+        self.console = on_console() if console is None else console
+        self._ticks_on_line = False
 
     # -- output parsing -------------------------------------------------------------------------
+    def _set_progress(self, percent):
+        if self.feedback:
+            self.feedback.setProgress(percent)
+            self._ticks_on_line = self.console
+
+    def _new_line(self):
+        """Ends a line of progress ticks (qgis_process) so that the next text gets a line of its own."""
+        if self._ticks_on_line:
+            self._ticks_on_line = False
+            self.feedback.pushConsoleInfo('')
+
     def _on_stdout(self, line):
-        match = _PROGRESS.match(line)
-        if match:
-            percent = min(100.0, float(match.group(1)))
-            stage = match.group(2).strip()
+        progress = parse_progress(line)
+        if progress:
+            percent, stage = progress
             if percent > self.progress:  # progress shown never goes backwards
                 self.progress = percent
-                if self.feedback:
-                    self.feedback.setProgress(percent)
+                self._set_progress(percent)
             if stage and stage != self.stage:
                 self.stage = stage
                 if self.feedback:
+                    self._new_line()
                     self.feedback.setProgressText(stage)
             return
         if line.strip() and self.feedback:
+            self._new_line()
             self.feedback.pushConsoleInfo(line)
 
     def _on_stderr(self, line):
@@ -104,12 +134,15 @@ class ProgramRun:
         if error:
             self.errors.append(error.group(1).strip())
             if self.feedback:
+                self._new_line()
                 self.feedback.pushConsoleInfo(line)
         elif warning:
             self.warnings.append(warning.group(1).strip())
             if self.feedback:
+                self._new_line()
                 self.feedback.pushWarning(warning.group(1).strip())
         elif self.feedback:
+            self._new_line()
             self.feedback.pushConsoleInfo(line)
 
     # -- running --------------------------------------------------------------------------------
@@ -171,8 +204,7 @@ class ProgramRun:
         if exit_code != 0:
             message = self.errors[-1] if self.errors else 'urbanvec failed with exit code {}'.format(exit_code)
             raise QgsProcessingException(message)
-        if self.feedback:
-            self.feedback.setProgress(100)
+        self._set_progress(100)
         return exit_code
 
     def _remove_temporaries(self, pid):

@@ -91,10 +91,7 @@ echo "model city_from_osm: $(count "$WORK/model_city.gpkg" roads) roads, report 
 PATH="$(echo "$PATH" | tr ':' '\n' | grep -vx "$(dirname "$URBANVEC")" | paste -sd: -)"
 if command -v urbanvec >/dev/null; then fail "another urbanvec is on PATH: $(command -v urbanvec)"; fi
 ini="$HOME/.local/share/QGIS/QGIS3/profiles/default/QGIS/QGIS3.ini"
-installed="$("$QGIS_PYTHON" -c 'from urbanvec.program import installed_candidates as c; import os; print(any(os.access(p, os.X_OK) for p in c()))')"
-if [ "$installed" = False ]; then
-  qp list | grep -q 'urbanvec:vectorize' && fail "algorithms listed although no program can be found"
-fi
+qp list 2>/dev/null | grep -q 'urbanvec:vectorize' && fail "algorithms listed although no program can be found"
 printf '\n[Processing]\nConfiguration\\URBANVEC_PROGRAM=%s\n' "$URBANVEC" >> "$ini"
 qp list | grep -q 'urbanvec:vectorize' || fail "the program set in the Processing options was not used"
 echo "PASS"

@@ -25,7 +25,7 @@ from qgis.core import (  # noqa: E402
 from qgis.core import QgsVectorLayer  # noqa: E402
 from urbanvec import program as program_module  # noqa: E402
 from urbanvec import styles  # noqa: E402
-from urbanvec.runner import ProgramRun  # noqa: E402
+from urbanvec.runner import ProgramRun, parse_progress  # noqa: E402
 
 PROGRAM = os.environ['URBANVEC']
 SOURCE = os.environ['URBANVEC_SOURCE_DIR']
@@ -64,6 +64,53 @@ class RecordingFeedback(QgsProcessingFeedback):
     def pushCommandInfo(self, text):
         self.commands.append(text)
         super().pushCommandInfo(text)
+
+
+class ConsoleRendering(RecordingFeedback):
+    """Prints into `printed` what qgis_process.bin's console feedback (QGIS 3.22) prints: progress as
+    GDAL-style ticks without a newline, each text on a line ending with a newline."""
+
+    def __init__(self):
+        super().__init__()
+        self.printed = ''
+        self.last_tick = -1
+
+    def _on_progress(self, value):
+        super()._on_progress(value)
+        tick = min(40, max(0, int(value * 0.4)))
+        while tick > self.last_tick:
+            self.last_tick += 1
+            self.printed += str(self.last_tick // 4 * 10) if self.last_tick % 4 == 0 else '.'
+        if tick == 40:
+            self.printed += ' - done.\n'
+
+    def setProgressText(self, text):
+        super().setProgressText(text)
+        self.printed += text + '\n'
+
+    def pushConsoleInfo(self, text):
+        super().pushConsoleInfo(text)
+        self.printed += text + '\n'
+
+    def pushWarning(self, text):
+        super().pushWarning(text)
+        self.printed += 'WARNING:\t' + text + '\n'
+
+
+def toolbox_entries():
+    """{provider row: [algorithm rows]} of the urbanvec provider in the Processing toolbox's model."""
+    from qgis.PyQt.QtCore import QModelIndex, Qt
+    from qgis.core import QgsApplication
+    from qgis.gui import QgsProcessingToolboxProxyModel
+    model = QgsProcessingToolboxProxyModel(None, QgsApplication.processingRegistry())
+    model.setFilters(QgsProcessingToolboxProxyModel.FilterToolbox)
+    entries = {}
+    for row in range(model.rowCount(QModelIndex())):
+        provider = model.index(row, 0, QModelIndex())
+        if model.data(provider, Qt.DisplayRole) == 'urbanvec':
+            entries['urbanvec'] = [model.data(model.index(r, 0, provider), Qt.DisplayRole)
+                                   for r in range(model.rowCount(provider))]
+    return entries
 
 
 def running_with(marker):
@@ -145,6 +192,31 @@ class RunTest(unittest.TestCase):
         self.assertEqual(feedback.progress_values, [10.0, 60.0])
         self.assertEqual(feedback.stages, ['reading', 'x', 'work'])
 
+    def test_progress_lines_become_the_percent_and_the_stage_in_words(self):
+        """A PROGRESS line gives setProgress(percent) and setProgressText(stage). In qgis_process the
+        percent is printed as ticks without a newline ('0...10'), so a stage must start a new line
+        there: ConsoleRendering shows what qgis_process prints (test_program_lookup checks the real
+        output), which was '0...10patch cleaning' before."""
+        self.assertEqual(parse_progress('PROGRESS 10.0 patch cleaning'), (10.0, 'patch cleaning'))
+        self.assertEqual(parse_progress('PROGRESS 0  road   graph '), (0.0, 'road graph'))
+        self.assertEqual(parse_progress('PROGRESS 100.0'), (100.0, ''))
+        self.assertEqual(parse_progress('PROGRESS 140 done'), (100.0, 'done'))
+        self.assertIsNone(parse_progress('PROGRESS10parcels'))
+        self.assertIsNone(parse_progress('gridify: 582 roads'))
+        lines = ['PROGRESS 0.0 raw blocks', 'PROGRESS 4.0 raw blocks', 'PROGRESS 10.0 patch cleaning',
+                 'PROGRESS 30.0 parcels', 'PROGRESS 35.0 parcels']
+        for console, expected in (
+                (True, 'raw blocks\n0...10\npatch cleaning\n...20...30\nparcels\n..\nWARNING:\tslow\n'),
+                (False, 'raw blocks\n0...10patch cleaning\n...20...30parcels\n..WARNING:\tslow\n')):
+            feedback = ConsoleRendering()
+            runner = ProgramRun('urbanvec', [], feedback, console=console)
+            for line in lines:
+                runner._on_stdout(line)
+            runner._on_stderr('Warning: slow')
+            self.assertEqual(feedback.progress_values, [4.0, 10.0, 30.0, 35.0])
+            self.assertEqual(feedback.stages, ['raw blocks', 'patch cleaning', 'parcels'])  # words only
+            self.assertEqual(feedback.printed, expected)
+
     def test_a_program_ignoring_sigterm_is_killed_and_its_temporary_output_removed(self):
         out = os.path.join(self.tmp, 'city.gpkg')
         # Like urbanvec inside a long stage: busy, not checking for cancellation, temporary output open.
@@ -159,20 +231,53 @@ class RunTest(unittest.TestCase):
         self.assertLess(time.monotonic() - start, 5.0)
         self.assertEqual(os.listdir(self.tmp), [])
 
-    def test_program_comes_from_the_setting_then_path(self):
+    def test_program_comes_from_the_setting_else_the_install_prefix_else_path(self):
         settings = QgsSettings()
         key = '/Processing/Configuration/' + program_module.PROGRAM_SETTING
+        missing = os.path.join(self.tmp, 'missing-urbanvec')
         try:
-            settings.setValue(key, os.path.join(self.tmp, 'missing-urbanvec'))
-            with self.assertRaisesRegex(program_module.ProgramNotFound, 'set in Processing options'):
-                program_module.find_program()
-            with self.assertRaisesRegex(QgsProcessingException, 'missing-urbanvec'):
-                run('urbanvec:gridify', {'INPUT': OSM, 'OUTPUT_DIR': os.path.join(self.tmp, 'g')})
             settings.setValue(key, PROGRAM)
-            self.assertEqual(program_module.find_program(), os.path.abspath(PROGRAM))
+            program, usage, skipped = program_module.resolve()
+            self.assertEqual((program, skipped), (os.path.abspath(PROGRAM), []))
+            self.assertIn('gridify', [c['name'] for c in usage['commands']])
+            settings.setValue(key, missing)  # a setting that does not work is named, and PATH is used
+            program, _, skipped = program_module.resolve()
+            self.assertEqual(os.path.realpath(program), os.path.realpath(PROGRAM))
+            self.assertEqual(skipped, ['the plugin setting ({}): {} does not exist'.format(
+                program_module.SETTING_PLACE, missing)])
         finally:
             settings.remove(key)
         self.assertEqual(os.path.realpath(program_module.find_program()), os.path.realpath(PROGRAM))  # from PATH
+        # The prefix `cmake --install` put the plugin under (CMakeLists.txt: share/qgis/python/plugins).
+        self.assertEqual(program_module.install_prefix('/opt/uv/share/qgis/python/plugins/urbanvec'), '/opt/uv')
+        self.assertEqual(program_module.install_prefix('/share/qgis/python/plugins/urbanvec'), '/')
+        self.assertIsNone(program_module.install_prefix(os.path.join(SOURCE, 'plugin', 'urbanvec')))
+        self.assertIsNone(program_module.install_prefix(
+            os.path.expanduser('~/.local/share/QGIS/QGIS3/profiles/default/python/plugins/urbanvec')))
+
+    def test_without_a_program_the_provider_has_a_placeholder_saying_why(self):
+        old_path = os.environ['PATH']
+        os.environ['PATH'] = os.pathsep.join(
+            d for d in old_path.split(os.pathsep) if not os.path.exists(os.path.join(d, 'urbanvec')))
+        try:
+            with self.assertRaises(program_module.ProgramNotFound) as raised:
+                program_module.resolve()
+            message = str(raised.exception)
+            self.assertTrue(message.startswith('No usable urbanvec program was found'), message)
+            self.assertIn('3. PATH ({}): no urbanvec in its folders\n'.format(os.environ['PATH']), message)
+            PROVIDER.refreshAlgorithms()
+            self.assertEqual([a.id() for a in PROVIDER.algorithms()], ['urbanvec:program_not_found'])
+            self.assertEqual(PROVIDER.longName(), 'urbanvec (program not found)')
+            self.assertEqual(PROVIDER.algorithms()[0].shortHelpString(), message)
+            # What the Processing toolbox shows (it hides a provider without algorithms).
+            self.assertEqual(toolbox_entries(), {'urbanvec': ['urbanvec program not found (open for how to fix it)']})
+            with self.assertRaisesRegex(QgsProcessingException, '^No usable urbanvec program was found'):
+                run('urbanvec:program_not_found', {})
+        finally:
+            os.environ['PATH'] = old_path
+            PROVIDER.refreshAlgorithms()
+        self.assertIn('urbanvec:gridify', [a.id() for a in PROVIDER.algorithms()])
+        self.assertTrue(PROVIDER.longName().startswith('urbanvec '), PROVIDER.longName())
 
     def gridify(self, cell_size=24):
         grid = os.path.join(self.tmp, 'grid')
