@@ -26,6 +26,15 @@ std::string text(double v, const char* format = "%g") {
   return buffer;
 }
 
+/// Sensible bounds of the placement options, in map units: a pixel from a millimetre to 10 km, an
+/// image centre within 100 000 km of the CRS origin (projected coordinates stay well below), so
+/// the written coordinates stay finite and keep sub-pixel precision.
+constexpr double kMinCellSize = 1e-3;
+constexpr double kMaxCellSize = 1e4;
+constexpr double kMaxCoordinate = 1e8;
+/// Larger than any image: 8192² pixels of kMaxCellSize.
+constexpr double kMaxSuburbArea = 1e16;
+
 app::CommandSpec spec() {
   const boundary::BoundaryOptions d;
   app::CommandSpec s;
@@ -101,21 +110,27 @@ app::CommandSpec spec() {
           .isAdvanced());
   o.push_back(
       option("-cellsize", ValueType::Real, "<size>",
-             "Ground size of a pixel in the units of -a_srs (metres for a projected CRS); default 1, i.e. "
-             "pixel units.")
-          .withUnit("m")
-          .atLeast(1e-9));
+             "Ground size of a pixel in map units: the linear unit of -a_srs (metres for most projected "
+             "CRSs, US feet for some); default 1, i.e. pixel units.")
+          .withUnit("map units")
+          .atLeast(kMinCellSize)
+          .atMost(kMaxCellSize));
   o.push_back(option("-center", ValueType::Real, "<x> <y>",
-                     "Where the image centre lands; default: the image's lower-left corner at (0, 0).")
-                  .values(2));
+                     "Where the image centre lands, in map units; default: the image's lower-left corner at "
+                     "(0, 0).")
+                  .values(2)
+                  .withUnit("map units")
+                  .atLeast(-kMaxCoordinate)
+                  .atMost(kMaxCoordinate));
   o.push_back(option("-a_srs", ValueType::String, "<crs>", "CRS of the output (projected, e.g. EPSG:32633).")
                   .withRole(Role::Crs));
-  o.push_back(
-      option("-suburbs", ValueType::Real, "<area>",
-             "Also keep the other islands covering at least this area (in squared -cellsize units, pixels by "
-             "default) as suburbs: the feature becomes a MultiPolygon.")
-          .withUnit("m2")
-          .atLeast(0));
+  o.push_back(option("-suburbs", ValueType::Real, "<area>",
+                     "Also keep the other islands covering at least this area (in square map units, i.e. "
+                     "-cellsize squared; square pixels without -cellsize) as suburbs: the feature becomes a "
+                     "MultiPolygon.")
+                  .withUnit("square map units")
+                  .atLeast(0)
+                  .atMost(kMaxSuburbArea));
   for (const app::OptionSpec& v : app::vectorOutputOptions()) o.push_back(v);
   s.examples = {
       "urbanvec boundary city.gpkg",

@@ -212,6 +212,12 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   const evaluate::EvaluationReport report =
       evaluate::evaluate(input, options, subProgress(ctx.progress, 0.3, 1.0));
   reportProgress(ctx.progress, 1.0, "done");
+  if (!report.layersOverlap)
+    ctx.warn("the result '" + resultPath + "' (" + evaluate::formatExtent(*report.resultExtent) +
+             ") and the truth '" + truthPath + "' (" + evaluate::formatExtent(*report.truthExtent) +
+             ") do not overlap in " + io::crsShortName(truthCrs) +
+             ": the distances and matches measure how far apart they lie, not the result; check that both "
+             "carry the right CRS");
 
   if (json) {
     {

@@ -2,6 +2,7 @@
 // (validate and regenerate, as the thesis recommends for production use).
 #include "urbanvec/boundary/generate_boundary.hpp"
 
+#include <cmath>
 #include <string>
 
 #include "urbanvec/boundary/cell_outline.hpp"
@@ -61,8 +62,9 @@ BoundaryAttempt attemptBoundary(const BoundaryOptions& options, PerlinSeed seed)
 BoundaryResult generateBoundary(const BoundaryOptions& options, const Progress& progress) {
   if (options.maxTries < 1)
     throw invalidOption("-max-tries must be at least 1, got " + std::to_string(options.maxTries));
-  if (options.suburbMinimumPixels < 0.0)
-    throw invalidOption("the minimum suburb area (-suburbs) must not be negative");
+  if (!(options.suburbMinimumPixels >= 0.0) || !std::isfinite(options.suburbMinimumPixels))
+    throw invalidOption("the minimum suburb area (-suburbs) must be a finite number >= 0, got " +
+                        std::to_string(options.suburbMinimumPixels) + " pixels");
   BoundaryResult result;
   bool kept = false;
   for (int t = 0; t < options.maxTries; ++t) {

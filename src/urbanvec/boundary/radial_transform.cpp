@@ -15,7 +15,7 @@ Grid<float> radialTransform(const Grid<float>& noise, const RadialTransformOptio
   if (!(options.noiseWeight >= 0.0 && options.noiseWeight <= 1.0))
     throw invalidOption("the Perlin weight c2 (-c2) must lie between 0 and 1, got " +
                         std::to_string(options.noiseWeight));
-  if (!(options.slopeExponent > 0.0))
+  if (!(options.slopeExponent > 0.0) || !std::isfinite(options.slopeExponent))
     throw invalidOption("the slope exponent n (-slope) must be positive, got " +
                         std::to_string(options.slopeExponent));
   const double c2 = options.noiseWeight;

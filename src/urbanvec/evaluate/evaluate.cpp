@@ -2,6 +2,7 @@
 // cities have, leaving the others absent.
 #include "urbanvec/evaluate/evaluate.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -106,13 +107,58 @@ double median(const std::vector<double>& values) {
   return quantile(values, 0.5);
 }
 
+void extend(std::optional<Extent>& box, const Vec2& p) {
+  if (!std::isfinite(p.x) || !std::isfinite(p.y)) return;
+  if (!box) {
+    box = Extent{p.x, p.y, p.x, p.y};
+    return;
+  }
+  box->minX = std::min(box->minX, p.x);
+  box->minY = std::min(box->minY, p.y);
+  box->maxX = std::max(box->maxX, p.x);
+  box->maxY = std::max(box->maxY, p.y);
+}
+
+void extend(std::optional<Extent>& box, const std::vector<Vec2>& points) {
+  for (const Vec2& p : points) extend(box, p);
+}
+
+void extend(std::optional<Extent>& box, const Polygon& polygon) {
+  extend(box, polygon.outer);  // holes lie inside the outer ring
+}
+
 }  // namespace
+
+std::optional<Extent> cityExtent(const CityLayers& city) {
+  std::optional<Extent> box;
+  for (const std::optional<Layer>* layer : {&city.roads, &city.blocks, &city.parcels}) {
+    if (!*layer) continue;
+    for (const Feature& f : (*layer)->features) {
+      if (const auto* p = std::get_if<Vec2>(&f.geometry)) extend(box, *p);
+      if (const auto* l = std::get_if<LineString>(&f.geometry)) extend(box, *l);
+      if (const auto* ml = std::get_if<MultiLineString>(&f.geometry))
+        for (const LineString& l : *ml) extend(box, l);
+      if (const auto* p = std::get_if<Polygon>(&f.geometry)) extend(box, *p);
+      if (const auto* mp = std::get_if<MultiPolygon>(&f.geometry))
+        for (const Polygon& p : *mp) extend(box, p);
+    }
+  }
+  return box;
+}
+
+bool extentsOverlap(const Extent& a, const Extent& b) {
+  return a.minX <= b.maxX && b.minX <= a.maxX && a.minY <= b.maxY && b.minY <= a.maxY;
+}
 
 EvaluationReport evaluate(const EvaluationInput& input, const EvaluateOptions& options,
                           const Progress& progress) {
   checkOptions(input, options);
   EvaluationReport report;
   report.cellSize = input.cellSize;
+  report.resultExtent = cityExtent(input.result);
+  report.truthExtent = cityExtent(input.truth);
+  report.layersOverlap = !report.resultExtent || !report.truthExtent ||
+                         extentsOverlap(*report.resultExtent, *report.truthExtent);
   reportProgress(progress, 0.0, "road distances");
   report.roads = measureRoads(input, options, subProgress(progress, 0.0, 0.5));
 

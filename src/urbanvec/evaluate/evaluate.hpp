@@ -103,8 +103,24 @@ struct ParcelReport {
   std::optional<double> invalidShare;       ///< invalidCount / result parcels with a geometry
 };
 
+/// A bounding box in the CRS of the evaluation (the truth's, metres).
+struct Extent {
+  double minX = 0.0, minY = 0.0, maxX = 0.0, maxY = 0.0;
+};
+
+/// The box around every coordinate of the layers a city has; nothing when they hold none.
+std::optional<Extent> cityExtent(const CityLayers& city);
+
+/// True when the two boxes share at least a point.
+bool extentsOverlap(const Extent& a, const Extent& b);
+
 struct EvaluationReport {
-  double cellSize = 0.0;  ///< metres
+  double cellSize = 0.0;               ///< metres
+  std::optional<Extent> resultExtent;  ///< of every result layer read
+  std::optional<Extent> truthExtent;   ///< of every truth layer read
+  /// False when both cities have an extent and the boxes are disjoint (e.g. one carries a wrong CRS
+  /// label): the distances and matches then measure how far apart the layers lie, not the result.
+  bool layersOverlap = true;
   RoadReport roads;
   BlockReport blocks;
   ParcelReport parcels;

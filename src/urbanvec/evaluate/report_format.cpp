@@ -53,7 +53,22 @@ nlohmann::ordered_json distanceJson(const std::optional<DistanceSummary>& d) {
   return j;
 }
 
+nlohmann::ordered_json extentJson(const std::optional<Extent>& e) {
+  if (!e) return nlohmann::ordered_json();
+  nlohmann::ordered_json j;
+  j["min_x"] = e->minX;
+  j["min_y"] = e->minY;
+  j["max_x"] = e->maxX;
+  j["max_y"] = e->maxY;
+  return j;
+}
+
 }  // namespace
+
+std::string formatExtent(const Extent& e) {
+  return "x " + format("%.10g", e.minX) + " to " + format("%.10g", e.maxX) + ", y " +
+         format("%.10g", e.minY) + " to " + format("%.10g", e.maxY);
+}
 
 std::string formatReportTable(const EvaluationReport& report, const ReportInputs& inputs) {
   const RoadReport& r = report.roads;
@@ -138,6 +153,9 @@ std::string formatReportJson(const EvaluationReport& report, const ReportInputs&
       {"result_roads", orNull(inputs.resultRoads)},     {"result_blocks", orNull(inputs.resultBlocks)},
       {"result_parcels", orNull(inputs.resultParcels)}, {"truth_roads", orNull(inputs.truthRoads)},
       {"truth_blocks", orNull(inputs.truthBlocks)},     {"truth_parcels", orNull(inputs.truthParcels)}};
+  j["extent"] = {{"result", extentJson(report.resultExtent)},
+                 {"truth", extentJson(report.truthExtent)},
+                 {"overlap", report.layersOverlap}};
   nlohmann::ordered_json roads;
   roads["truth_lines"] = orNull(r.truthLines);
   roads["result_lines"] = orNull(r.resultLines);

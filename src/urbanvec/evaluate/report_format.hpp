@@ -17,6 +17,9 @@ struct ReportInputs {
   std::string truthRoads, truthBlocks, truthParcels;
 };
 
+/// "x <min> to <max>, y <min> to <max>", for messages.
+std::string formatExtent(const Extent& extent);
+
 /// The human-readable table: one metric per line, name column padded, ending with a newline.
 std::string formatReportTable(const EvaluationReport& report, const ReportInputs& inputs);
 

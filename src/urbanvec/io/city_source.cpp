@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/core/utm.hpp"
@@ -40,7 +41,8 @@ LineString fromCurve(const OGRSimpleCurve& curve) {
 Polygon fromPolygon(const OGRPolygon& polygon) {
   Polygon out;
   if (const OGRLinearRing* ring = polygon.getExteriorRing()) out.outer = fromCurve(*ring);
-  for (int i = 0; i < polygon.getNumInteriorRings(); ++i) out.holes.push_back(fromCurve(*polygon.getInteriorRing(i)));
+  for (int i = 0; i < polygon.getNumInteriorRings(); ++i)
+    out.holes.push_back(fromCurve(*polygon.getInteriorRing(i)));
   return out;
 }
 
@@ -48,13 +50,16 @@ Polygon fromPolygon(const OGRPolygon& polygon) {
 void collectLines(const OGRGeometry* g, MultiLineString& out) {
   if (!g || g->IsEmpty()) return;
   switch (wkbFlatten(g->getGeometryType())) {
-    case wkbLineString: out.push_back(fromCurve(*g->toLineString())); break;
+    case wkbLineString:
+      out.push_back(fromCurve(*g->toLineString()));
+      break;
     case wkbMultiLineString:
     case wkbGeometryCollection:
     case wkbMultiPolygon:
       for (const OGRGeometry* part : *g->toGeometryCollection()) collectLines(part, out);
       break;
-    default: break;
+    default:
+      break;
   }
 }
 
@@ -62,12 +67,15 @@ void collectLines(const OGRGeometry* g, MultiLineString& out) {
 void collectPolygons(const OGRGeometry* g, MultiPolygon& out) {
   if (!g || g->IsEmpty()) return;
   switch (wkbFlatten(g->getGeometryType())) {
-    case wkbPolygon: out.push_back(fromPolygon(*g->toPolygon())); break;
+    case wkbPolygon:
+      out.push_back(fromPolygon(*g->toPolygon()));
+      break;
     case wkbMultiPolygon:
     case wkbGeometryCollection:
       for (const OGRGeometry* part : *g->toGeometryCollection()) collectPolygons(part, out);
       break;
-    default: break;
+    default:
+      break;
   }
 }
 
@@ -80,19 +88,22 @@ std::string layerList(GDALDataset& ds) {
 }
 
 /// The layer named by `option`, or the first existing conventional name when the option is empty.
-OGRLayer* pickLayer(GDALDataset& ds, const std::string& path, const std::string& option, const std::string& given,
-                    const std::vector<std::string>& conventional, Shape shape, bool required) {
+OGRLayer* pickLayer(GDALDataset& ds, const std::string& path, const std::string& option,
+                    const std::string& given, const std::vector<std::string>& conventional, Shape shape,
+                    bool required) {
   OGRLayer* layer = nullptr;
   if (!given.empty()) {
     layer = ds.GetLayerByName(given.c_str());
     if (!layer)
-      throw invalidOption(option + ": input '" + path + "' has no layer '" + given + "' (layers: " + layerList(ds) + ")");
+      throw invalidOption(option + ": input '" + path + "' has no layer '" + given +
+                          "' (layers: " + layerList(ds) + ")");
   } else {
     for (const std::string& name : conventional)
       if ((layer = ds.GetLayerByName(name.c_str()))) break;
     if (!layer && required)
-      throw invalidInput("input '" + path + "' has no roads layer (looked for " + conventional.front() + ", " +
-                         conventional.back() + "; layers: " + layerList(ds) + "); name it with " + option);
+      throw invalidInput("input '" + path + "' has no roads layer (looked for " + conventional.front() +
+                         ", " + conventional.back() + "; layers: " + layerList(ds) + "); name it with " +
+                         option);
     if (!layer) return nullptr;
   }
   const OGRwkbGeometryType type = wkbFlatten(layer->GetGeomType());
@@ -131,22 +142,54 @@ Tags osmTags(const OGRFeature& f) {
   return tags;
 }
 
+/// While it lives, records the failures GDAL reports (its quiet handler would drop them): a driver
+/// that meets a broken or truncated file (the OSM driver: "An error occurred during the parsing of
+/// data around byte N") reports a failure and then ends the layer early, as if it had no more features.
+class ReadFailures {
+ public:
+  ReadFailures() { CPLPushErrorHandlerEx(handler, this); }
+  ~ReadFailures() { CPLPopErrorHandler(); }
+  ReadFailures(const ReadFailures&) = delete;
+  ReadFailures& operator=(const ReadFailures&) = delete;
+  bool any() const { return count_ > 0; }
+  const std::string& first() const { return first_; }
+
+ private:
+  static void CPL_STDCALL handler(CPLErr kind, CPLErrorNum, const char* message) {
+    auto* self = static_cast<ReadFailures*>(CPLGetErrorHandlerUserData());
+    if (!self || kind < CE_Failure) return;
+    if (self->count_++ == 0) self->first_ = message ? message : "";
+  }
+  int count_ = 0;
+  std::string first_;
+};
+
 struct Reader {
   const std::string& path;
   OGRCoordinateTransformation* transform;
 
-  /// Calls fn(feature, geometry in the grid CRS) for every feature with a geometry.
+  /// Calls fn(feature, geometry in the grid CRS) for every feature with a geometry. Throws when GDAL
+  /// reported a failure while reading, since the features read are then only part of the layer.
   template <class Fn>
   void each(OGRLayer* layer, Fn fn) {
+    std::optional<ReadFailures> failures(std::in_place);
     layer->ResetReading();
     std::unique_ptr<OGRFeature> f;
     while ((f.reset(layer->GetNextFeature()), f)) {
       OGRGeometry* g = f->GetGeometryRef();
       if (!g || g->IsEmpty()) continue;
       if (transform && g->transform(transform) != OGRERR_NONE)
-        throw invalidInput("cannot reproject a feature of layer '" + std::string(layer->GetName()) + "' of '" +
-                           path + "' (" + lastGdalMessage() + ")");
+        throw invalidInput("cannot reproject a feature of layer '" + std::string(layer->GetName()) +
+                           "' of '" + path + "' (" + lastGdalMessage() + ")");
       fn(*f, g);
+    }
+    if (failures->any()) {
+      const std::string why = failures->first();
+      failures.reset();
+      throw invalidInput("input '" + path +
+                         "' could not be read completely: GDAL failed while reading layer '" +
+                         layer->GetName() + "'" + (why.empty() ? "" : " (" + why + ")") +
+                         "; the file may be truncated or damaged, so download or export it again");
     }
   }
 };
@@ -169,14 +212,17 @@ std::string wktOf(const OGRSpatialReference& srs) {
 
 }  // namespace
 
-std::string chooseGridCrs(const std::string& sourceWkt, double centreX, double centreY, const std::string& userTarget) {
+std::string chooseGridCrs(const std::string& sourceWkt, double centreX, double centreY,
+                          const std::string& userTarget) {
   if (!userTarget.empty()) {
     const std::string wkt = crsToWkt(userTarget, "-t_srs");
     if (!isProjectedInMetres(wkt))
-      throw invalidOption("-t_srs: the grid needs a projected CRS in metres; '" + userTarget + "' is not one");
+      throw invalidOption("-t_srs: the grid needs a projected CRS in metres; '" + userTarget +
+                          "' is not one");
     return wkt;
   }
-  if (isGeographic(sourceWkt)) return crsToWkt("EPSG:" + std::to_string(utmEpsgFor(centreX, centreY)), "-t_srs");
+  if (isGeographic(sourceWkt))
+    return crsToWkt("EPSG:" + std::to_string(utmEpsgFor(centreX, centreY)), "-t_srs");
   if (!isProjectedInMetres(sourceWkt))
     throw invalidOption("-t_srs: the input CRS " + crsShortName(sourceWkt) +
                         " is not projected in metres; give a grid CRS with -t_srs");
@@ -196,7 +242,8 @@ CityData readCitySource(const std::string& path, const CitySourceOptions& option
     DatasetPtr raster(static_cast<GDALDataset*>(
         GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
     if (raster)
-      throw invalidInput("input '" + path + "' is a raster; gridify needs city vectors (OSM, GeoPackage, shapefile)");
+      throw invalidInput("input '" + path +
+                         "' is a raster; gridify needs city vectors (OSM, GeoPackage, shapefile)");
     throw invalidInput("input '" + path + "' is not a vector dataset GDAL can read" +
                        (why.empty() ? "" : " (" + why + ")"));
   }
@@ -210,11 +257,15 @@ CityData readCitySource(const std::string& path, const CitySourceOptions& option
   if (osm) {
     roadsLayer = ds->GetLayerByName("lines");
     landuseLayer = ds->GetLayerByName("multipolygons");
-    if (!roadsLayer || !landuseLayer) throw invalidInput("input '" + path + "' lacks the OSM lines/multipolygons layers");
+    if (!roadsLayer || !landuseLayer)
+      throw invalidInput("input '" + path + "' lacks the OSM lines/multipolygons layers");
   } else {
-    roadsLayer = pickLayer(*ds, path, "-roads-layer", options.roadsLayer, {"roads", "streets"}, Shape::Lines, true);
-    buildingsLayer = pickLayer(*ds, path, "-buildings-layer", options.buildingsLayer, {"buildings"}, Shape::Polygons, false);
-    landuseLayer = pickLayer(*ds, path, "-landuse-layer", options.landuseLayer, {"landuse"}, Shape::Polygons, false);
+    roadsLayer =
+        pickLayer(*ds, path, "-roads-layer", options.roadsLayer, {"roads", "streets"}, Shape::Lines, true);
+    buildingsLayer = pickLayer(*ds, path, "-buildings-layer", options.buildingsLayer, {"buildings"},
+                               Shape::Polygons, false);
+    landuseLayer =
+        pickLayer(*ds, path, "-landuse-layer", options.landuseLayer, {"landuse"}, Shape::Polygons, false);
     waterLayer = pickLayer(*ds, path, "-water-layer", options.waterLayer, {"water"}, Shape::Polygons, false);
   }
   if (!options.parcelsLayer.empty())
@@ -227,8 +278,7 @@ CityData readCitySource(const std::string& path, const CitySourceOptions& option
   } else if (const OGRSpatialReference* srs = roadsLayer->GetSpatialRef()) {
     sourceWkt = wktOf(*srs);
   }
-  if (sourceWkt.empty())
-    throw invalidInput("input '" + path + "' has no CRS; give it with -a_srs");
+  if (sourceWkt.empty()) throw invalidInput("input '" + path + "' has no CRS; give it with -a_srs");
   OGREnvelope env;
   if (roadsLayer->GetExtent(&env, TRUE) != OGRERR_NONE)
     throw invalidInput("input '" + path + "': the roads layer '" + std::string(roadsLayer->GetName()) +
@@ -301,12 +351,15 @@ CityData readCitySource(const std::string& path, const CitySourceOptions& option
       }
       auto use = gridify::areaUseForTags(tags);
       if (!use) return;
-      if (*use == LandUse::Water) city.water.push_back(std::move(shape));
-      else city.areas.push_back({std::move(shape), *use});
+      if (*use == LandUse::Water)
+        city.water.push_back(std::move(shape));
+      else
+        city.areas.push_back({std::move(shape), *use});
     });
   } else {
     if (buildingsLayer) {
-      const int useIndex = fieldIndex(buildingsLayer, options.landuseField.empty() ? "building" : options.landuseField);
+      const int useIndex =
+          fieldIndex(buildingsLayer, options.landuseField.empty() ? "building" : options.landuseField);
       const int levelsIndex = fieldIndex(buildingsLayer, options.levelsField);
       reader.each(buildingsLayer, [&](const OGRFeature& f, const OGRGeometry* g) {
         gridify::CityBuilding b;
@@ -321,15 +374,17 @@ CityData readCitySource(const std::string& path, const CitySourceOptions& option
       const std::string field = options.landuseField.empty() ? "landuse" : options.landuseField;
       const int useIndex = fieldIndex(landuseLayer, field);
       if (useIndex < 0)
-        throw invalidOption("-landuse-field: layer '" + std::string(landuseLayer->GetName()) + "' of '" + path +
-                            "' has no field '" + field + "'");
+        throw invalidOption("-landuse-field: layer '" + std::string(landuseLayer->GetName()) + "' of '" +
+                            path + "' has no field '" + field + "'");
       reader.each(landuseLayer, [&](const OGRFeature& f, const OGRGeometry* g) {
         MultiPolygon shape;
         collectPolygons(g, shape);
         auto use = gridify::useFromValue(fieldText(f, useIndex));
         if (shape.empty() || !use) return;
-        if (*use == LandUse::Water) city.water.push_back(std::move(shape));
-        else city.areas.push_back({std::move(shape), *use});
+        if (*use == LandUse::Water)
+          city.water.push_back(std::move(shape));
+        else
+          city.areas.push_back({std::move(shape), *use});
       });
     }
     if (waterLayer) {
@@ -345,8 +400,8 @@ CityData readCitySource(const std::string& path, const CitySourceOptions& option
     const int useIndex = fieldIndex(parcelsLayer, options.landuseField);
     const int popIndex = fieldIndex(parcelsLayer, options.populationField);
     if (!options.populationField.empty() && popIndex < 0)
-      throw invalidOption("-population-field: layer '" + std::string(parcelsLayer->GetName()) + "' of '" + path +
-                          "' has no field '" + options.populationField + "'");
+      throw invalidOption("-population-field: layer '" + std::string(parcelsLayer->GetName()) + "' of '" +
+                          path + "' has no field '" + options.populationField + "'");
     reader.each(parcelsLayer, [&](const OGRFeature& f, const OGRGeometry* g) {
       gridify::CityParcel p;
       collectPolygons(g, p.shape);
@@ -357,7 +412,8 @@ CityData readCitySource(const std::string& path, const CitySourceOptions& option
       city.parcels.push_back(std::move(p));
     });
     if (city.parcels.empty())
-      throw invalidInput("-parcels-layer: layer '" + options.parcelsLayer + "' of '" + path + "' has no polygon");
+      throw invalidInput("-parcels-layer: layer '" + options.parcelsLayer + "' of '" + path +
+                         "' has no polygon");
   }
   if (city.roads.empty())
     throw invalidInput("input '" + path + "' holds no road (layer '" + roadsLayer->GetName() +

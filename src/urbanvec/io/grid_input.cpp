@@ -8,10 +8,12 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <unordered_set>
 
 #include "urbanvec/core/error.hpp"
+#include "urbanvec/io/crs.hpp"
 #include "urbanvec/io/raster_io.hpp"
 
 namespace urbanvec::io {
@@ -25,13 +27,29 @@ std::string trim(const std::string& s) {
   return s.substr(a, b - a + 1);
 }
 
-std::vector<std::string> splitCsv(const std::string& line) {
+std::vector<std::string> splitCsv(const std::string& line, char separator = ',') {
   std::vector<std::string> out;
   std::stringstream ss(line);
   std::string item;
-  while (std::getline(ss, item, ',')) out.push_back(trim(item));
-  if (!line.empty() && line.back() == ',') out.emplace_back();
+  while (std::getline(ss, item, separator)) out.push_back(trim(item));
+  if (!line.empty() && line.back() == separator) out.emplace_back();
   return out;
+}
+
+/// The column separator a table line seems to use: whichever of comma, semicolon and tab it holds
+/// most often (comma on a tie, or when it holds none).
+char detectSeparator(const std::string& line) {
+  char best = ',';
+  long most = std::count(line.begin(), line.end(), ',');
+  for (char c : {';', '\t'}) {
+    const long n = std::count(line.begin(), line.end(), c);
+    if (n > most) most = n, best = c;
+  }
+  return best;
+}
+
+std::string separatorName(char c) {
+  return c == ';' ? "semicolons" : c == '\t' ? "tabs" : "commas";
 }
 
 std::string lower(std::string s) {
@@ -51,6 +69,18 @@ bool parseNumber(const std::string& text, double& value) {
   char* end = nullptr;
   value = std::strtod(text.c_str(), &end);
   return end && *end == '\0' && std::isfinite(value);
+}
+
+/// A number of a table whose columns are separated by `separator`: a table separated by semicolons
+/// or tabs (as spreadsheets write in locales with a decimal comma) may write "12,5" for 12.5.
+bool parseTableNumber(const std::string& text, char separator, double& value) {
+  if (parseNumber(text, value)) return true;
+  if (separator == ',' || std::count(text.begin(), text.end(), ',') != 1 ||
+      text.find('.') != std::string::npos)
+    return false;
+  std::string dotted = text;
+  dotted[dotted.find(',')] = '.';
+  return parseNumber(dotted, value);
 }
 
 /// A missing table, or a folder given as one, is named as such rather than "cannot be opened".
@@ -120,6 +150,20 @@ void requireSameGridAs(const RasterInfo& base, const std::string& baseRole, cons
     throw invalidInput(names + " differ in CRS: " + crsLabel(b.crsWkt) + " vs " + crsLabel(a.crsWkt) + hint);
 }
 
+/// Lengths, areas and densities are in metres: a grid in degrees or feet is refused, with the
+/// gdalwarp command that brings it to the UTM zone of its centre (as gridify picks).
+void requireMetricGrid(const GridSpec& spec, const std::string& role, const std::string& path) {
+  const std::string unit = nonMetricUnit(spec.crsWkt);
+  if (unit.empty()) return;
+  const auto& c = spec.transform.c;
+  const double col = spec.width / 2.0, row = spec.height / 2.0;
+  const int utm = utmEpsgAt(spec.crsWkt, c[0] + col * c[1] + row * c[2], c[3] + col * c[4] + row * c[5]);
+  throw invalidInput(role + " '" + path + "' is in " + crsLabel(spec.crsWkt) +
+                     "; vectorize needs a projected CRS in metres (the grid is in " + unit +
+                     "); reproject it with gdalwarp -t_srs " +
+                     (utm ? "EPSG:" + std::to_string(utm) : std::string("<a projected CRS in metres>")));
+}
+
 }  // namespace
 
 std::vector<std::pair<double, LandUse>> readClassTable(const std::string& path) {
@@ -129,14 +173,17 @@ std::vector<std::pair<double, LandUse>> readClassTable(const std::string& path) 
   std::vector<std::pair<double, LandUse>> table;
   std::string line;
   int lineNo = 0;
+  std::optional<char> separator;  // from the first line that is not a comment
   while (std::getline(f, line)) {
     ++lineNo;
     const std::string t = trim(line);
     if (t.empty() || t[0] == '#') continue;
-    const std::vector<std::string> cols = splitCsv(t);
+    const bool firstLine = !separator;
+    if (!separator) separator = detectSeparator(t);
+    const std::vector<std::string> cols = splitCsv(t, *separator);
     double value = 0;
-    if (cols.size() < 2 || !parseNumber(cols[0], value)) {
-      if (table.empty() && lineNo == 1 && cols.size() >= 2) continue;  // header
+    if (cols.size() < 2 || !parseTableNumber(cols[0], *separator, value)) {
+      if (table.empty() && firstLine && cols.size() >= 2) continue;  // header
       throw invalidInput("-classes table '" + path + "' line " + std::to_string(lineNo) +
                          " is not 'value,class_name': '" + t + "'");
     }
@@ -158,6 +205,7 @@ vectorize::VectorizeInput loadGridInput(const GridInputPaths& paths, std::vector
   const std::string luRole = "land-use raster";
   const Grid<double> raw = readRasterBand<double>(paths.landUse, luRole, &info);
   in.spec = info.spec;
+  requireMetricGrid(info.spec, luRole, paths.landUse);
   if (info.spec.crsWkt.empty() && warnings)
     warnings->push_back("land-use raster '" + paths.landUse + "' has no CRS: the output layers have none");
   in.landUse = Grid<std::uint8_t>(raw.width, raw.height, 0);
@@ -192,8 +240,22 @@ vectorize::VectorizeInput loadGridInput(const GridInputPaths& paths, std::vector
     RasterInfo di;
     in.density = readRasterBand<float>(paths.density, "density raster", &di);
     requireSameGridAs(info, luRole, paths.landUse, di, "density raster", paths.density);
-    for (float& d : in.density.cells)
-      if ((di.nodata && d == static_cast<float>(*di.nodata)) || !std::isfinite(d)) d = 0;
+    // Nodata cells hold no one; any other value must be a population: finite and not negative.
+    const std::optional<float> nodata =
+        di.nodata ? std::optional<float>(static_cast<float>(*di.nodata)) : std::nullopt;
+    for (size_t i = 0; i < in.density.cells.size(); ++i) {
+      float& d = in.density.cells[i];
+      if (nodata && (d == *nodata || (std::isnan(d) && std::isnan(*nodata)))) {
+        d = 0;
+        continue;
+      }
+      if (!std::isfinite(d) || d < 0)
+        throw invalidInput("density raster '" + paths.density + "' holds value " + numberText(d) +
+                           " at column " + std::to_string(i % in.density.width) + ", row " +
+                           std::to_string(i / in.density.width) +
+                           ", which is not a population per cell (a finite number >= 0; only nodata "
+                           "cells count as 0)");
+    }
   }
   if (!paths.parcelTable.empty() && paths.parcels.empty())
     throw invalidInput("-parcel-table '" + paths.parcelTable +
@@ -224,12 +286,16 @@ vectorize::VectorizeInput loadGridInput(const GridInputPaths& paths, std::vector
     if (!f) throw invalidInput("parcel table '" + paths.parcelTable + "' cannot be opened");
     std::string line;
     if (!std::getline(f, line)) throw invalidInput("parcel table '" + paths.parcelTable + "' is empty");
-    const std::vector<std::string> header = splitCsv(line);
+    // Columns are separated by commas, or by semicolons or tabs as spreadsheets write them.
+    const char separator = detectSeparator(line);
+    const std::vector<std::string> header = splitCsv(line, separator);
     auto column = [&](const std::string& name) {
       for (size_t k = 0; k < header.size(); ++k)
         if (lower(header[k]) == name) return static_cast<int>(k);
       throw invalidInput("parcel table '" + paths.parcelTable + "' has no column '" + name +
-                         "' (expected parcel_id,land_use,population,cells)");
+                         "' (expected parcel_id,land_use,population,cells" +
+                         (separator == ',' ? std::string() : ", separated by " + separatorName(separator)) +
+                         ")");
     };
     const int cId = column("parcel_id"), cUse = column("land_use"), cPop = column("population"),
               cCells = column("cells");
@@ -239,16 +305,23 @@ vectorize::VectorizeInput loadGridInput(const GridInputPaths& paths, std::vector
     while (std::getline(f, line)) {
       ++lineNo;
       if (trim(line).empty()) continue;
-      const std::vector<std::string> cols = splitCsv(line);
+      const std::vector<std::string> cols = splitCsv(line, separator);
       const std::string at = "parcel table '" + paths.parcelTable + "' line " + std::to_string(lineNo);
       const int need = std::max({cId, cUse, cPop, cCells});
-      if (static_cast<int>(cols.size()) <= need) throw invalidInput(at + " has too few columns");
+      if (static_cast<int>(cols.size()) <= need) {
+        const char used = detectSeparator(line);
+        throw invalidInput(at + " has too few columns" +
+                           (used == separator
+                                ? std::string()
+                                : " (the header separates columns with " + separatorName(separator) +
+                                      ", this line seems to use " + separatorName(used) + ")"));
+      }
       double id = 0, pop = 0, cells = 0;
       if (!parseNumber(cols[cId], id) || id != std::floor(id) || id <= 0 || id > 2147483647.0)
         throw invalidInput(at + ": parcel_id '" + cols[cId] + "' is not a positive integer");
-      if (!parseNumber(cols[cPop], pop) || pop < 0)
+      if (!parseTableNumber(cols[cPop], separator, pop) || pop < 0)
         throw invalidInput(at + ": population '" + cols[cPop] + "' is not a number >= 0");
-      if (!parseNumber(cols[cCells], cells) || cells < 0)
+      if (!parseTableNumber(cols[cCells], separator, cells) || cells < 0)
         throw invalidInput(at + ": cells '" + cols[cCells] + "' is not a number >= 0");
       const std::optional<LandUse> use = parseLandUse(cols[cUse]);
       if (!use) throw invalidInput(at + ": land_use '" + cols[cUse] + "' is not a class name");
