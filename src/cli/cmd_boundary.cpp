@@ -227,7 +227,8 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
           " is geographic; the boundary is laid out in -cellsize units and needs a projected CRS");
   }
   const std::string outputPath = args.positionals()[0];
-  io::AtomicOutput output(outputPath, args.flag("-overwrite"));
+  io::VectorOutput output(outputPath, write, {"boundary"},
+                          io::OutputRules{args.flag("-overwrite"), false, {}, ctx.inputs});
   if (write.crsWkt.empty())
     ctx.warn("no -a_srs: the boundary is written without a CRS" +
              std::string(args.given("-cellsize") ? "" : ", in pixel units") +
@@ -269,8 +270,8 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
                     FieldValue(static_cast<std::int64_t>(result.tries))};
   layer.features.push_back(std::move(feature));
   reportProgress(ctx.progress, 0.96, "writing");
-  io::writeVectorDataset(output.tempPath(), {layer}, write);
-  output.commit();
+  output.write({layer});
+  output.commit(ctx.progress);
   reportProgress(ctx.progress, 1.0, "done");
 
   const std::string dimension = measured ? "D_R " + text(metrics.regression->comparableDimension, "%.3f") +

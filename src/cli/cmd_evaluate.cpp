@@ -116,7 +116,8 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   const std::string resultPath = args.positionals()[0];
   const std::string truthPath = args.positionals()[1];
   std::optional<io::AtomicOutput> json;
-  if (args.given("-json")) json.emplace(args.str("-json"), args.flag("-overwrite"));
+  if (args.given("-json"))
+    json.emplace(args.str("-json"), io::OutputRules{args.flag("-overwrite"), false, {}, ctx.inputs});
 
   io::listEvaluationLayers(truthPath, "truth");
   const std::vector<std::string> resultLayers = io::listEvaluationLayers(resultPath, "result");
@@ -211,13 +212,13 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   options.sampleSpacingCells = args.real("-sample-spacing");
   const evaluate::EvaluationReport report =
       evaluate::evaluate(input, options, subProgress(ctx.progress, 0.3, 1.0));
-  reportProgress(ctx.progress, 1.0, "done");
   if (!report.layersOverlap)
     ctx.warn("the result '" + resultPath + "' (" + evaluate::formatExtent(*report.resultExtent) +
              ") and the truth '" + truthPath + "' (" + evaluate::formatExtent(*report.truthExtent) +
              ") do not overlap in " + io::crsShortName(truthCrs) +
              ": the distances and matches measure how far apart they lie, not the result; check that both "
              "carry the right CRS");
+  reportProgress(ctx.progress, 1.0, "done");
 
   if (json) {
     {
@@ -226,7 +227,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
       out.flush();
       if (!out) throw ioError("cannot write -json output '" + json->path() + "'");
     }
-    json->commit();
+    json->commit(ctx.progress);
   }
   std::fflush(stdout);
   *ctx.out << evaluate::formatReportTable(report, labels) << std::flush;
