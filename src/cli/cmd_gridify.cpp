@@ -211,6 +211,10 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   rules.isFolder = true;
   rules.entries = {kOutputFiles.begin(), kOutputFiles.end()};
   rules.inputs = ctx.inputs;
+  io::RasterWriteOptions raster;
+  raster.creationOptions = {"COMPRESS=DEFLATE"};
+  for (const std::string& co : args.values("-co")) raster.creationOptions.push_back(co);
+  io::checkRasterWriteOptions(raster);
   io::AtomicOutput output(outputDir, rules);
 
   const Progress readProgress = subProgress(ctx.progress, 0.0, 0.3);
@@ -223,9 +227,6 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   for (Layer& layer : result.truth)
     if (layer.name == "grid_info") layer.features[0].values[4] = crsName;
 
-  io::RasterWriteOptions raster;
-  raster.creationOptions = {"COMPRESS=DEFLATE"};
-  for (const std::string& co : args.values("-co")) raster.creationOptions.push_back(co);
   namespace fs = std::filesystem;
   const fs::path dir(output.tempPath());
   io::writeRasterBand((dir / "landuse.tif").string(), result.spec, result.landUse, kLandUseNodata, raster);

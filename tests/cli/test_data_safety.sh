@@ -115,6 +115,10 @@ run_cmd vectorize -q -dsco VERSION=9.9 landuse.tif never.gpkg
 expect_status 1
 expect_stderr_contains "ERROR: -dsco VERSION=9.9: VERSION of GPKG takes one of AUTO, 1.0, 1.1, 1.2, 1.3"
 expect_missing never.gpkg
+run_cmd gridify -q -co TILED=MAYBE -tr 24 "$PBF" never_grid
+expect_status 1
+expect_stderr "ERROR: -co TILED=MAYBE: TILED of GTiff takes YES or NO, got 'MAYBE'"
+expect_missing never_grid
 expect_no_temp .
 
 # --- two runs on one new name: the second is refused, the first's result stays ---------------------

@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "urbanvec/core/error.hpp"
+#include "urbanvec/io/creation_options.hpp"
 #include "urbanvec/io/gdal_init.hpp"
 
 namespace urbanvec::io {
@@ -27,8 +28,8 @@ DatasetPtr openRaster(const std::string& path, const std::string& role) {
   if (!std::filesystem::exists(path, ec) && path.rfind("/vsi", 0) != 0)
     throw invalidInput(role + " '" + path + "' does not exist");
   CPLErrorReset();
-  DatasetPtr ds(static_cast<GDALDataset*>(GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY,
-                                                     nullptr, nullptr, nullptr)));
+  DatasetPtr ds(static_cast<GDALDataset*>(
+      GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
   if (!ds) {
     std::string why = lastGdalMessage();
     throw invalidInput(role + " '" + path + "' is not a raster GDAL can read" +
@@ -63,13 +64,21 @@ RasterInfo describe(GDALDataset& ds) {
 template <class T>
 constexpr GDALDataType gdalType();
 template <>
-constexpr GDALDataType gdalType<std::uint8_t>() { return GDT_Byte; }
+constexpr GDALDataType gdalType<std::uint8_t>() {
+  return GDT_Byte;
+}
 template <>
-constexpr GDALDataType gdalType<std::int32_t>() { return GDT_Int32; }
+constexpr GDALDataType gdalType<std::int32_t>() {
+  return GDT_Int32;
+}
 template <>
-constexpr GDALDataType gdalType<float>() { return GDT_Float32; }
+constexpr GDALDataType gdalType<float>() {
+  return GDT_Float32;
+}
 template <>
-constexpr GDALDataType gdalType<double>() { return GDT_Float64; }
+constexpr GDALDataType gdalType<double>() {
+  return GDT_Float64;
+}
 
 }  // namespace
 
@@ -86,8 +95,8 @@ Grid<T> readRasterBand(const std::string& path, const std::string& role, RasterI
     throw invalidInput(role + " '" + path + "' has no cells");
   Grid<T> grid(info.spec.width, info.spec.height);
   CPLErrorReset();
-  if (ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, grid.width, grid.height, grid.cells.data(),
-                                     grid.width, grid.height, gdalType<T>(), 0, 0) != CE_None)
+  if (ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, grid.width, grid.height, grid.cells.data(), grid.width,
+                                     grid.height, gdalType<T>(), 0, 0) != CE_None)
     throw invalidInput(role + " '" + path + "' could not be read (" + lastGdalMessage() + ")");
   if (infoOut) *infoOut = info;
   return grid;
@@ -115,8 +124,8 @@ void writeRasterBand(const std::string& path, const GridSpec& spec, const Grid<T
   }
   GDALRasterBand* band = ds->GetRasterBand(1);
   if (nodata) band->SetNoDataValue(*nodata);
-  if (band->RasterIO(GF_Write, 0, 0, grid.width, grid.height, const_cast<T*>(grid.cells.data()),
-                     grid.width, grid.height, gdalType<T>(), 0, 0) != CE_None)
+  if (band->RasterIO(GF_Write, 0, 0, grid.width, grid.height, const_cast<T*>(grid.cells.data()), grid.width,
+                     grid.height, gdalType<T>(), 0, 0) != CE_None)
     throw ioError("cannot write raster '" + path + "' (" + lastGdalMessage() + ")");
   CPLErrorReset();
   GDALClose(ds.release());
@@ -124,13 +133,21 @@ void writeRasterBand(const std::string& path, const GridSpec& spec, const Grid<T
     throw ioError("cannot finish raster '" + path + "' (" + lastGdalMessage() + ")");
 }
 
+void checkRasterWriteOptions(const RasterWriteOptions& options) {
+  ensureGdal();
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(options.format.c_str());
+  if (!driver || !driver->GetMetadataItem(GDAL_DCAP_RASTER) || !driver->GetMetadataItem(GDAL_DCAP_CREATE))
+    throw invalidOption("-of: '" + options.format + "' is not a raster format GDAL can write");
+  checkCreationOptions(driver->GetMetadataItem(GDAL_DMD_CREATIONOPTIONLIST), options.creationOptions, "-co",
+                       "raster", options.format);
+}
+
 void requireSameGrid(const GridSpec& a, const std::string& aPath, const GridSpec& b,
                      const std::string& bPath) {
   const std::string both = "'" + bPath + "' and '" + aPath + "'";
   if (a.width != b.width || a.height != b.height)
-    throw invalidInput(both + " differ in size (" + std::to_string(b.width) + "x" +
-                       std::to_string(b.height) + " vs " + std::to_string(a.width) + "x" +
-                       std::to_string(a.height) + " cells)");
+    throw invalidInput(both + " differ in size (" + std::to_string(b.width) + "x" + std::to_string(b.height) +
+                       " vs " + std::to_string(a.width) + "x" + std::to_string(a.height) + " cells)");
   for (int i = 0; i < 6; ++i) {
     const double tol = 1e-9 * std::max(1.0, std::fabs(a.transform.c[i]));
     if (std::fabs(a.transform.c[i] - b.transform.c[i]) > tol)
@@ -153,9 +170,9 @@ template void writeRasterBand(const std::string&, const GridSpec&, const Grid<st
                               std::optional<double>, const RasterWriteOptions&);
 template void writeRasterBand(const std::string&, const GridSpec&, const Grid<std::int32_t>&,
                               std::optional<double>, const RasterWriteOptions&);
-template void writeRasterBand(const std::string&, const GridSpec&, const Grid<float>&,
-                              std::optional<double>, const RasterWriteOptions&);
-template void writeRasterBand(const std::string&, const GridSpec&, const Grid<double>&,
-                              std::optional<double>, const RasterWriteOptions&);
+template void writeRasterBand(const std::string&, const GridSpec&, const Grid<float>&, std::optional<double>,
+                              const RasterWriteOptions&);
+template void writeRasterBand(const std::string&, const GridSpec&, const Grid<double>&, std::optional<double>,
+                              const RasterWriteOptions&);
 
 }  // namespace urbanvec::io

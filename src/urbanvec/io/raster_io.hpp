@@ -30,6 +30,9 @@ struct RasterWriteOptions {
   std::vector<std::string> creationOptions;  ///< NAME=VALUE, GDAL's -co
 };
 
+/// Checks the format and its -co options before any work (throws invalidOption naming the option).
+void checkRasterWriteOptions(const RasterWriteOptions& options);
+
 /// Writes one band to `path` (which the caller makes atomic) with the frame and CRS of `spec`.
 template <class T>
 void writeRasterBand(const std::string& path, const GridSpec& spec, const Grid<T>& grid,

@@ -17,6 +17,7 @@
 
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/io/atomic_output.hpp"
+#include "urbanvec/io/creation_options.hpp"
 #include "urbanvec/io/gdal_init.hpp"
 #include "urbanvec/io/layer_styles.hpp"
 
@@ -340,71 +341,6 @@ void writeVectorDataset(const std::string& path, const std::vector<Layer>& layer
 
 namespace {
 
-bool equalsIgnoringCase(const std::string& a, const std::string& b) {
-  return EQUAL(a.c_str(), b.c_str());
-}
-
-/// Checks NAME=VALUE creation options against the driver's declared list (names, booleans, integers,
-/// fixed choices), as GDAL itself only warns about them.
-void validateCreationOptions(const char* optionListXml, const std::vector<std::string>& given,
-                             const std::string& flag, const std::string& kind, const std::string& format) {
-  if (given.empty()) return;
-  std::unique_ptr<CPLXMLNode, decltype(&CPLDestroyXMLNode)> root(
-      optionListXml ? CPLParseXMLString(optionListXml) : nullptr, &CPLDestroyXMLNode);
-  std::vector<std::string> known;
-  if (root)
-    for (const CPLXMLNode* o = root->psChild; o; o = o->psNext)
-      if (o->eType == CXT_Element && EQUAL(o->pszValue, "Option"))
-        known.push_back(CPLGetXMLValue(o, "name", ""));
-  for (const std::string& kv : given) {
-    const size_t eq = kv.find('=');
-    if (eq == std::string::npos || eq == 0)
-      throw invalidOption(flag + " expects NAME=VALUE, got '" + kv + "'");
-    const std::string name = kv.substr(0, eq);
-    const std::string value = kv.substr(eq + 1);
-    const CPLXMLNode* option = nullptr;
-    if (root)
-      for (const CPLXMLNode* o = root->psChild; o && !option; o = o->psNext)
-        if (o->eType == CXT_Element && EQUAL(o->pszValue, "Option") &&
-            (equalsIgnoringCase(CPLGetXMLValue(o, "name", ""), name) ||
-             equalsIgnoringCase(CPLGetXMLValue(o, "alias", ""), name)))
-          option = o;
-    if (!option) {
-      std::string list;
-      for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
-      throw invalidOption(flag + " " + kv + ": " + format + " has no " + kind + " creation option '" + name +
-                          "'" + (list.empty() ? " (it takes none)" : " (it takes " + list + ")"));
-    }
-    const std::string type = CPLGetXMLValue(option, "type", "string");
-    auto refuse = [&](const std::string& expected) {
-      throw invalidOption(flag + " " + kv + ": " + name + " of " + format + " takes " + expected + ", got '" +
-                          value + "'");
-    };
-    if (equalsIgnoringCase(type, "boolean")) {
-      static const char* const kBooleans[] = {"YES", "NO", "TRUE", "FALSE", "ON", "OFF", "1", "0"};
-      if (std::none_of(std::begin(kBooleans), std::end(kBooleans),
-                       [&](const char* b) { return equalsIgnoringCase(b, value); }))
-        refuse("YES or NO");
-    } else if (equalsIgnoringCase(type, "int") || equalsIgnoringCase(type, "integer")) {
-      char* end = nullptr;
-      std::strtoll(value.c_str(), &end, 10);
-      if (value.empty() || *end != '\0') refuse("an integer");
-    } else if (equalsIgnoringCase(type, "string-select")) {
-      std::vector<std::string> choices;
-      for (const CPLXMLNode* v = option->psChild; v; v = v->psNext)
-        if (v->eType == CXT_Element && EQUAL(v->pszValue, "Value") && v->psChild)
-          choices.push_back(v->psChild->pszValue);
-      if (!choices.empty() && std::none_of(choices.begin(), choices.end(), [&](const std::string& c) {
-            return equalsIgnoringCase(c, value);
-          })) {
-        std::string list;
-        for (const std::string& c : choices) list += (list.empty() ? "" : ", ") + c;
-        refuse("one of " + list);
-      }
-    }
-  }
-}
-
 /// Files a driver writes beside the named one (checked before the work, moved with it).
 std::vector<std::string> sideFiles(const std::string& format, const std::string& fileName) {
   const std::string stem = std::filesystem::path(fileName).stem().string();
@@ -426,10 +362,10 @@ VectorOutput::VectorOutput(std::string path, VectorWriteOptions options, std::ve
     : path_(std::move(path)), options_(std::move(options)) {
   options_.format = vectorFormatFor(path_, options_.format);
   GDALDriver* driver = vectorDriver(options_.format);
-  validateCreationOptions(driver->GetMetadataItem(GDAL_DMD_CREATIONOPTIONLIST),
-                          options_.datasetCreationOptions, "-dsco", "dataset", options_.format);
-  validateCreationOptions(driver->GetMetadataItem(GDAL_DS_LAYER_CREATIONOPTIONLIST),
-                          options_.layerCreationOptions, "-lco", "layer", options_.format);
+  checkCreationOptions(driver->GetMetadataItem(GDAL_DMD_CREATIONOPTIONLIST), options_.datasetCreationOptions,
+                       "-dsco", "dataset", options_.format);
+  checkCreationOptions(driver->GetMetadataItem(GDAL_DS_LAYER_CREATIONOPTIONLIST),
+                       options_.layerCreationOptions, "-lco", "layer", options_.format);
   const char* extensions = driver->GetMetadataItem(GDAL_DMD_EXTENSIONS);
   if (!extensions) extensions = driver->GetMetadataItem(GDAL_DMD_EXTENSION);
   const CPLStringList formatExtensions(CSLTokenizeString(extensions ? extensions : ""));
