@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "urbanvec/core/landuse.hpp"
+#include "urbanvec/core/planar_graph.hpp"
 #include "urbanvec/vectorize/road_checks.hpp"
 
 namespace urbanvec::vectorize {
@@ -70,51 +71,42 @@ bool enclosesDevelopedLand(const RoadGraph& g, const std::vector<int>& face,
   return false;
 }
 
-std::vector<std::vector<int>> walkFaces(const RoadGraph& g, const RoadAdjacency& a, double maxFaceArea) {
-  const size_t halfEdges = a.to.size();
-  std::vector<std::int32_t> from(halfEdges);
+/// The road-only graph as a planar graph with the road graph's node ids and clockwise link order.
+PlanarGraph roadPlanarGraph(const RoadGraph& g, const RoadAdjacency& a) {
+  PlanarGraph planar;
+  for (const RoadNode& n : g.nodes) planar.addNode(n.p);
+  std::vector<std::int32_t> edgeOfLink(a.to.size(), -1);
   for (size_t i = 0; i + 1 < a.offsets.size(); ++i)
-    for (int k = a.offsets[i]; k < a.offsets[i + 1]; ++k) from[k] = static_cast<int>(i);
-  auto halfEdge = [&](int u, int v) {
-    for (int k = a.offsets[u]; k < a.offsets[u + 1]; ++k)
-      if (a.to[k] == v) return k;
-    return -1;
-  };
-  std::vector<char> done(halfEdges, 0);
+    for (int k = a.offsets[i]; k < a.offsets[i + 1]; ++k) {
+      const int j = a.to[k];
+      if (static_cast<int>(i) >= j) continue;
+      const int e = planar.addEdge(static_cast<int>(i), j);
+      edgeOfLink[k] = e;
+      for (int back = a.offsets[j]; back < a.offsets[j + 1]; ++back)
+        if (a.to[back] == static_cast<int>(i)) edgeOfLink[back] = e;
+    }
+  for (size_t i = 0; i + 1 < a.offsets.size(); ++i)
+    if (a.offsets[i + 1] > a.offsets[i])
+      planar.setRotation(static_cast<int>(i), std::vector<int>(edgeOfLink.begin() + a.offsets[i],
+                                                               edgeOfLink.begin() + a.offsets[i + 1]));
+  return planar;
+}
+
+std::vector<std::vector<int>> walkFaces(const RoadGraph& g, const RoadAdjacency& a, double maxFaceArea) {
+  const PlanarGraph planar = roadPlanarGraph(g, a);
   std::vector<std::vector<int>> faces;
-  std::vector<int> walk;
-  for (size_t start = 0; start < halfEdges; ++start) {
-    if (done[start]) continue;
-    walk.clear();
-    int e = static_cast<int>(start);
-    while (!done[e]) {
-      done[e] = 1;
-      walk.push_back(e);
-      const int u = from[e], v = a.to[e];
-      // Leftmost turn at v: the link following v->u clockwise keeps the face on the left.
-      const int back = halfEdge(v, u);
-      const int deg = a.offsets[v + 1] - a.offsets[v];
-      e = a.offsets[v] + (back - a.offsets[v] + 1) % deg;
-    }
-    double twiceArea = 0;
-    for (int k : walk) {
-      const Vec2& p = g.nodes[from[k]].p;
-      const Vec2& q = g.nodes[a.to[k]].p;
-      twiceArea += p.x * q.y - q.x * p.y;
-    }
+  for (const PlanarGraph::Face& face : planar.faces()) {
+    const double twiceArea = face.twiceSignedArea;
     // Outer faces of components are clockwise (negative area). A loop that smoothing has collapsed onto
     // a line encloses (almost) nothing but is still a cycle, so faces of about zero area count too;
     // the walk around a tree has an empty cycle and is dropped below.
     if (twiceArea < -1e-9 || twiceArea > 2 * maxFaceArea) continue;
     // Drop edges walked both ways (dangling branches): what is left is the cycle, in walk order.
-    std::unordered_map<std::int64_t, int> count;
-    auto key = [](int x, int y) {
-      return (static_cast<std::int64_t>(std::min(x, y)) << 32) | std::max(x, y);
-    };
-    for (int k : walk) ++count[key(from[k], a.to[k])];
+    std::unordered_map<int, int> count;
+    for (int h : face.halfEdges) ++count[PlanarGraph::edgeOf(h)];
     std::vector<int> cycle;
-    for (int k : walk)
-      if (count[key(from[k], a.to[k])] == 1) cycle.push_back(from[k]);
+    for (int h : face.halfEdges)
+      if (count[PlanarGraph::edgeOf(h)] == 1) cycle.push_back(planar.origin(h));
     if (cycle.size() >= 3) faces.push_back(std::move(cycle));
   }
   return faces;
