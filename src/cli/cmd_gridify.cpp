@@ -5,11 +5,11 @@
 #include <fstream>
 #include <sstream>
 
+#include "urbanvec/app/city_source.hpp"
 #include "urbanvec/app/command.hpp"
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/gridify/gridify.hpp"
 #include "urbanvec/io/atomic_output.hpp"
-#include "urbanvec/io/city_source.hpp"
 #include "urbanvec/io/crs.hpp"
 #include "urbanvec/io/raster_io.hpp"
 #include "urbanvec/io/vector_io.hpp"
@@ -184,7 +184,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   options.truthCurbSecondaryCells = args.real("-truth-curb-secondary");
   options.truthRoadReachCells = args.real("-truth-road-reach");
 
-  io::CitySourceOptions source;
+  app::CitySourceOptions source;
   if (args.given("-a_srs")) source.assignedCrs = args.str("-a_srs");
   if (args.given("-t_srs")) source.targetCrs = args.str("-t_srs");
   if (args.given("-roads-layer")) source.roadsLayer = args.str("-roads-layer");
@@ -219,7 +219,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
 
   const Progress readProgress = subProgress(ctx.progress, 0.0, 0.3);
   reportProgress(readProgress, 0.0, "reading");
-  gridify::CityData city = io::readCitySource(input, source, ctx.warn);
+  gridify::CityData city = app::readCitySource(input, source, ctx.warn);
   reportProgress(readProgress, 1.0, "reading");
   gridify::GridifyResult result = gridify::gridify(city, options, subProgress(ctx.progress, 0.3, 0.9));
 

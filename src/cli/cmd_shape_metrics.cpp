@@ -157,9 +157,9 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
     Vec2 centre;
     if (layerCentre(layer, centre))
       hint = ", e.g. -t_srs EPSG:" + std::to_string(utmEpsgFor(centre.x, centre.y));
-    throw invalidOption("layer '" + layerName + "' of '" + input + "' is in a geographic CRS (" +
-                        io::crsShortName(loaded->crsWkt) + "); lengths and areas need metres: give -t_srs" +
-                        hint);
+    throw invalidInput("layer '" + layerName + "' of '" + input + "' is in a geographic CRS (" +
+                       io::crsShortName(loaded->crsWkt) + "); lengths and areas need metres: give -t_srs" +
+                       hint);
   }
   if (loaded->crsWkt.empty() && read.targetCrs.empty())
     ctx.warn("layer '" + layerName + "' has no CRS: lengths are in its coordinate units");

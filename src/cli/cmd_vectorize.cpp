@@ -1,14 +1,16 @@
 // `urbanvec vectorize`: gridded land use -> vector road network (issue 3: spec sexton-vectorizer.md
 // stages A1–A5, B1–B6; docs/vectorize.md).
+#include <sys/stat.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
 #include <sstream>
 
 #include "urbanvec/app/command.hpp"
+#include "urbanvec/app/grid_input.hpp"
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/io/atomic_output.hpp"
-#include "urbanvec/io/grid_input.hpp"
 #include "urbanvec/io/vector_io.hpp"
 #include "urbanvec/vectorize/road_checks.hpp"
 #include "urbanvec/vectorize/road_output.hpp"
@@ -267,38 +269,44 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
       options.roadsOnly ? std::vector<std::string>{"roads", "road_nodes"} : spec().outputLayers, rules);
   // A -debug-stages folder this run creates goes again when the run fails (declared before debugOut,
   // so the temporary file inside is gone first).
-  struct CreatedFolder {
-    std::filesystem::path top;  ///< the outermost folder this run created; empty when none
+  struct CreatedFolders {
+    std::vector<std::filesystem::path> made;  ///< folders this run itself created, outermost first
     bool keep = false;
-    ~CreatedFolder() {
+    ~CreatedFolders() {
       std::error_code ec;
-      if (!keep && !top.empty()) std::filesystem::remove_all(top, ec);
+      for (auto it = made.rbegin(); !keep && it != made.rend(); ++it) std::filesystem::remove(*it, ec);
     }
-  } createdFolder;
+  } createdFolders;
   std::unique_ptr<io::AtomicOutput> debugOut;
   if (debug) {
+    namespace fs = std::filesystem;
     const std::string dir = args.str("-debug-stages");
     std::error_code ec;
-    for (std::filesystem::path p = std::filesystem::absolute(dir, ec);
-         !p.empty() && !ec && !std::filesystem::exists(p, ec); p = p.parent_path()) {
-      createdFolder.top = p;
+    // Each level is made with one mkdir, and only the ones this run made are removed on failure (and
+    // only when empty): another run creating the same folders at once keeps its own.
+    std::vector<fs::path> levels;
+    for (fs::path p = fs::absolute(dir, ec); !p.empty() && !ec && !fs::exists(p, ec); p = p.parent_path()) {
+      levels.push_back(p);
       if (p == p.parent_path()) break;
     }
-    std::filesystem::create_directories(dir, ec);
-    if (ec || !std::filesystem::is_directory(dir))
-      throw invalidOption("-debug-stages: cannot create folder '" + dir + "'");
-    debugOut =
-        std::make_unique<io::AtomicOutput>((std::filesystem::path(dir) / "stages.gpkg").string(), rules);
+    for (auto it = levels.rbegin(); it != levels.rend(); ++it)
+      if (::mkdir(it->c_str(), 0777) == 0) createdFolders.made.push_back(*it);
+    if (!fs::is_directory(dir, ec)) throw invalidOption("-debug-stages: cannot create folder '" + dir + "'");
+    const fs::path stages = fs::path(dir) / "stages.gpkg";
+    if (fs::weakly_canonical(fs::absolute(stages), ec) == fs::weakly_canonical(fs::absolute(output), ec))
+      throw invalidOption("-debug-stages '" + dir + "' would write stages.gpkg, which is the output '" +
+                          output + "'; choose another folder or output name");
+    debugOut = std::make_unique<io::AtomicOutput>(stages.string(), rules);
   }
 
-  io::GridInputPaths paths;
+  app::GridInputPaths paths;
   paths.landUse = landUse;
   if (args.given("-density")) paths.density = args.str("-density");
   if (args.given("-parcels")) paths.parcels = args.str("-parcels");
   if (args.given("-parcel-table")) paths.parcelTable = args.str("-parcel-table");
   if (args.given("-classes")) paths.classes = args.str("-classes");
   std::vector<std::string> warnings;
-  const vectorize::VectorizeInput input = io::loadGridInput(paths, &warnings);
+  const vectorize::VectorizeInput input = app::loadGridInput(paths, &warnings);
   for (const std::string& w : warnings) ctx.warn(w);
 
   vectorize::VectorizeResult result = vectorize::vectorize(input, options, ctx.progress);
@@ -337,7 +345,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
     debugOut->commit(ctx.progress);
   }
   out.commit(ctx.progress);
-  createdFolder.keep = true;
+  createdFolders.keep = true;
 
   if (args.flag("-timings") && ctx.out) {
     std::ostream& s = *ctx.out;

@@ -55,20 +55,20 @@ case "$(ogrinfo -ro -so "$WORK/suburbs.gpkg" boundary)" in *"Geometry: Multi Pol
 
 # Bad input: one-line error, exit 1 (2 for usage), nothing written.
 run_cmd boundary -fill 1.5 "$WORK/bad.gpkg"
-expect_status 1
+expect_status 2
 expect_stderr "ERROR: -fill must lie strictly between 0 and 1, got 1.5"
 expect_missing "$WORK/bad.gpkg"
 run_cmd boundary -fill 0 "$WORK/bad.gpkg"
-expect_status 1
+expect_status 2
 expect_stderr "ERROR: -fill must lie strictly between 0 and 1, got 0"
 run_cmd boundary -layers 3-10 "$WORK/bad.gpkg"
-expect_status 1
+expect_status 2
 expect_stderr "ERROR: -layers must be <start>-<end> with 0 <= start <= end <= 9 (log2 of -size 512), got '3-10'"
 run_cmd boundary -size 64 -layers 2-7 "$WORK/bad.gpkg"
-expect_status 1
+expect_status 2
 expect_stderr "ERROR: -layers must be <start>-<end> with 0 <= start <= end <= 6 (log2 of -size 64), got '2-7'"
 run_cmd boundary -layers nine "$WORK/bad.gpkg"
-expect_status 1
+expect_status 2
 expect_stderr_contains "got 'nine'"
 run_cmd boundary -slope 3 "$WORK/bad.gpkg"
 expect_status 2
@@ -96,7 +96,7 @@ if [ "$(id -u)" -ne 0 ]; then
   expect_stderr_contains "is not writable"
 fi
 run_cmd boundary -q -a_srs EPSG:4326 -cellsize 10 "$WORK/bad.gpkg"
-expect_status 1
+expect_status 2
 expect_stderr_contains "is geographic"
 
 finish

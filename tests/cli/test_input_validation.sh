@@ -155,7 +155,7 @@ expect_failure 2 "ERROR: -suburbs expects a finite number, got 'nan'" boundary -
 expect_failure 2 "ERROR: -suburbs must be at most 1e+16, got 1e300" boundary -q -suburbs 1e300 "$B"
 expect_failure 2 "ERROR: -c2 expects a finite number, got 'nan'" boundary -q -c2 nan "$B"
 expect_failure 2 "ERROR: -persistence expects a finite number, got '-inf'" boundary -q -persistence -inf "$B"
-expect_failure 1 "ERROR: -fill must lie strictly between 0 and 1, got 1" boundary -q -fill 1 "$B"
+expect_failure 2 "ERROR: -fill must lie strictly between 0 and 1, got 1" boundary -q -fill 1 "$B"
 # The largest accepted values still give finite coordinates where they were asked for.
 run_cmd boundary -q -size 16 -layers 0-4 -no-validate -max-tries 50 -cellsize 10000 -center 1e8 -1e8 \
   -a_srs EPSG:32633 "$B"

@@ -95,9 +95,9 @@ expect_warning "Warning: the land-use grid has no road cells (codes 2 and 3): th
 rm -f "$O"
 
 # -keep-all-roads switches B4 and B5 removal off: giving their thresholds as well is refused.
-expect_failure 1 "ERROR: -keep-all-roads switches the road removals off; do not give -cycle-nodes with it" \
+expect_failure 2 "ERROR: -keep-all-roads switches the road removals off; do not give -cycle-nodes with it" \
   -keep-all-roads -cycle-nodes 12 "$WORK/town.tif"
-expect_failure 1 "ERROR: -keep-all-roads switches the road removals off; do not give -dead-end-angle with it" \
+expect_failure 2 "ERROR: -keep-all-roads switches the road removals off; do not give -dead-end-angle with it" \
   -keep-all-roads -dead-end-angle 45 "$WORK/town.tif"
 
 # A float raster whose values are not class codes is refused, pointing at -classes; with a -classes

@@ -474,7 +474,9 @@ int runMain(int argc, char** argv) {
   } catch (const Error& e) {
     std::fflush(stdout);
     std::cerr << "ERROR: " << e.what() << "\n";
-    return 1;
+    // An option value the command cannot use is a usage error, whether the parser or the command
+    // found it (README: exit status 2).
+    return e.kind() == ErrorKind::InvalidOption ? 2 : 1;
   } catch (const std::bad_alloc&) {
     std::fflush(stdout);
     std::cerr << "ERROR: out of memory\n";

@@ -103,13 +103,23 @@ AtomicOutput::AtomicOutput(std::string path, OutputRules rules)
   if (fs::exists(target, ec) && rules_.isFolder != fs::is_directory(target, ec))
     throw ioError(what_ + " '" + path_ + "' exists and is " +
                   (rules_.isFolder ? "not a folder" : "a folder"));
+  // Staging and lock live in the real folder the output lands in: inside an existing output folder
+  // (which may be a symlink to another file system, where a rename from beside it would fail), else
+  // in the output's parent. Resolved paths make `g` and a symlink to it share one lock.
+  const bool insideFolder = rules_.isFolder && fs::is_directory(target, ec);
+  const fs::path real = fs::weakly_canonical(insideFolder ? target : parent, ec);
+  workDir_ = ec ? (insideFolder ? target : parent).string() : real.string();
+  baseName_ = insideFolder ? fs::path(workDir_).filename().string() : target.filename().string();
+  if (baseName_.empty() || baseName_ == "." || baseName_ == "..") baseName_ = "output";
   takeLock();
   try {
     checkExisting();
     removeStaleTemporaries();
-    const std::string staging = (parent / ("." + target.stem().string() + ".tmp-" +
-                                           std::to_string(::getpid()) + target.extension().string()))
-                                    .string();
+    const fs::path base(baseName_);
+    const std::string staging =
+        (fs::path(workDir_) /
+         ("." + base.stem().string() + ".tmp-" + std::to_string(::getpid()) + base.extension().string()))
+            .string();
     removePath(staging);
     if (!fs::create_directory(staging, ec))
       throw ioError("cannot create the temporary folder '" + staging + "': " + ec.message());
@@ -142,18 +152,18 @@ void AtomicOutput::checkInputs() const {
     if (!in) continue;
     for (const std::string& w : written)
       if (const std::optional<struct stat> out = statOf(w); out && sameFile(*in, *out))
-        throw invalidOption(what_ + " '" + path_ + "' would replace the input '" + input +
-                            "'; choose another output name");
+        throw invalidInput(what_ + " '" + path_ + "' would replace the input '" + input +
+                           "'; choose another output name");
     if (!rules_.isFolder) continue;
     // A folder output never holds an input: the input's folder chain must not reach the output.
     if (const std::optional<struct stat> out = statOf(path_); out && sameFile(*in, *out))
-      throw invalidOption(what_ + " '" + path_ + "' is the input '" + input + "'; choose another folder");
+      throw invalidInput(what_ + " '" + path_ + "' is the input '" + input + "'; choose another folder");
     const fs::path inputReal = fs::weakly_canonical(input, ec);
     if (ec || folderReal.empty()) continue;
     for (fs::path p = inputReal.parent_path(); !p.empty(); p = p.parent_path()) {
       if (p == folderReal)
-        throw invalidOption(what_ + " '" + path_ + "' holds the input '" + input +
-                            "'; write the output to another folder");
+        throw invalidInput(what_ + " '" + path_ + "' holds the input '" + input +
+                           "'; write the output to another folder");
       if (p == p.parent_path()) break;
     }
   }
@@ -182,7 +192,7 @@ void AtomicOutput::checkExisting() const {
 
 void AtomicOutput::takeLock() {
   const fs::path target(path_);
-  lockPath_ = (fs::path(parent_) / ("." + target.filename().string() + ".lock")).string();
+  lockPath_ = (fs::path(workDir_) / ("." + baseName_ + ".lock")).string();
   for (int attempt = 0; attempt < 10; ++attempt) {
     const int fd = ::open(lockPath_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
     if (fd < 0)
@@ -216,10 +226,10 @@ void AtomicOutput::takeLock() {
 }
 
 void AtomicOutput::removeStaleTemporaries() const {
-  const fs::path target(path_);
+  const fs::path target(baseName_);
   const std::string prefix = "." + target.stem().string() + ".tmp-";
   std::error_code ec;
-  for (const fs::directory_entry& entry : fs::directory_iterator(parent_, ec)) {
+  for (const fs::directory_entry& entry : fs::directory_iterator(workDir_, ec)) {
     const std::string name = entry.path().filename().string();
     if (name.rfind(prefix, 0) != 0) continue;
     size_t end = prefix.size();
@@ -280,18 +290,36 @@ void AtomicOutput::commit(const Progress& progress) {
       if (ec) rollBack("cannot move '" + original.string() + "' aside (" + ec.message() + ")");
       movedAside.emplace_back(original, kept);
     };
+    // A file being replaced is first hard-linked aside, so the rename onto it is one atomic step
+    // (no moment without the old or the new file) and a rollback can still bring it back.
+    auto keepAside = [&](const fs::path& original) {
+      const fs::path kept = aside / std::to_string(asideCount++);
+      if (fs::is_regular_file(original, ec) && ::link(original.c_str(), kept.c_str()) == 0) {
+        movedAside.emplace_back(original, kept);
+        return;
+      }
+      fs::rename(original, kept, ec);
+      if (ec) rollBack("cannot move '" + original.string() + "' aside (" + ec.message() + ")");
+      movedAside.emplace_back(original, kept);
+    };
+    auto isStaged = [&](const std::string& name) {
+      return std::find(staged.begin(), staged.end(), name) != staged.end();
+    };
     for (const std::string& name : staged) {
       const fs::path dest = root / name;
-      if (fs::exists(dest, ec)) moveAside(dest);
+      if (fs::exists(dest, ec)) keepAside(dest);
       for (const char* suffix : kSidecarSuffixes) {
         const fs::path sidecar = root / (name + suffix);
-        if (fs::exists(sidecar, ec) && std::find(staged.begin(), staged.end(), name + suffix) == staged.end())
-          moveAside(sidecar);
+        if (fs::exists(sidecar, ec) && !isStaged(name + suffix)) moveAside(sidecar);
       }
       fs::rename(fs::path(stagingDir_) / name, dest, ec);
       if (ec) rollBack("cannot move '" + name + "' into place (" + ec.message() + ")");
       movedIn.push_back(dest);
     }
+    // Files of the previous output that this run did not write (a .prj of an output now without CRS,
+    // a layer not written this time) would describe the new one wrongly: they go too.
+    for (const std::string& name : rules_.entries)
+      if (!isStaged(name) && fs::exists(root / name, ec)) moveAside(root / name);
   }
   gCommitted = true;
   if (const long delay = faultSetting("after-commit-delay-ms")) sleepMs(delay);

@@ -55,7 +55,9 @@ class AtomicOutput {
   OutputRules rules_;
   std::string what_;        ///< "output file" or "output folder", for messages
   std::string parent_;      ///< folder holding the target
-  std::string stagingDir_;  ///< hidden folder beside the target
+  std::string workDir_;     ///< real folder holding the staging folder and the lock
+  std::string baseName_;    ///< name the staging folder and the lock are derived from
+  std::string stagingDir_;  ///< hidden folder beside (or inside) the target
   std::string tempPath_;
   std::string lockPath_;
   int lockFd_ = -1;

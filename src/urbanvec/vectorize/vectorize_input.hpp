@@ -1,4 +1,4 @@
-// Plain input and simulated-data types of the vectorizer (spec §2.1, §2.2). io/grid_input.hpp fills
+// Plain input and simulated-data types of the vectorizer (spec §2.1, §2.2). app/grid_input.hpp fills
 // VectorizeInput from rasters and CSV files; tests build it in code.
 #pragma once
 

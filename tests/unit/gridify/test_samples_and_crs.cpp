@@ -2,9 +2,9 @@
 // as issue 2 §2 says (UTM of the data's centre for geographic input, else the input CRS).
 #include <gtest/gtest.h>
 
+#include "urbanvec/app/city_source.hpp"
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/gridify/road_raster.hpp"
-#include "urbanvec/io/city_source.hpp"
 #include "urbanvec/io/crs.hpp"
 #include "urbanvec/io/raster_io.hpp"
 
@@ -31,17 +31,17 @@ INSTANTIATE_TEST_SUITE_P(Samples, SampleGrid, ::testing::Values("monaco", "buben
 
 TEST(GridCrs, GeographicInputGetsTheUtmZoneOfItsCentre) {
   const std::string wgs84 = io::crsToWkt("EPSG:4326", "test");
-  EXPECT_EQ(io::crsShortName(io::chooseGridCrs(wgs84, 7.42, 43.74, "")), "EPSG:32632");
-  EXPECT_EQ(io::crsShortName(io::chooseGridCrs(wgs84, -58.4, -34.6, "")), "EPSG:32721");
+  EXPECT_EQ(io::crsShortName(app::chooseGridCrs(wgs84, 7.42, 43.74, "")), "EPSG:32632");
+  EXPECT_EQ(io::crsShortName(app::chooseGridCrs(wgs84, -58.4, -34.6, "")), "EPSG:32721");
 }
 
 TEST(GridCrs, ProjectedInputKeepsItsCrsAndUserTargetWins) {
   const std::string utm33 = io::crsToWkt("EPSG:32633", "test");
-  EXPECT_EQ(io::crsShortName(io::chooseGridCrs(utm33, 460000, 5550000, "")), "EPSG:32633");
-  EXPECT_EQ(io::crsShortName(io::chooseGridCrs(utm33, 460000, 5550000, "EPSG:3035")), "EPSG:3035");
+  EXPECT_EQ(io::crsShortName(app::chooseGridCrs(utm33, 460000, 5550000, "")), "EPSG:32633");
+  EXPECT_EQ(io::crsShortName(app::chooseGridCrs(utm33, 460000, 5550000, "EPSG:3035")), "EPSG:3035");
 }
 
 TEST(GridCrs, GeographicUserTargetIsRefused) {
   const std::string utm33 = io::crsToWkt("EPSG:32633", "test");
-  EXPECT_THROW(io::chooseGridCrs(utm33, 460000, 5550000, "EPSG:4326"), Error);
+  EXPECT_THROW(app::chooseGridCrs(utm33, 460000, 5550000, "EPSG:4326"), Error);
 }

@@ -7,8 +7,8 @@
 #include <stdexcept>
 
 #include "test_grids.hpp"
+#include "urbanvec/app/grid_input.hpp"
 #include "urbanvec/core/error.hpp"
-#include "urbanvec/io/grid_input.hpp"
 #include "urbanvec/io/raster_io.hpp"
 #include "urbanvec/vectorize/road_checks.hpp"
 #include "urbanvec/vectorize/road_output.hpp"
@@ -284,7 +284,7 @@ TEST(GridInput, RastersMustShareTheGridAndHoldClassCodes) {
   lu.at(3, 2) = 255;
   const std::string luPath = (dir / "landuse.tif").string();
   io::writeRasterBand(luPath, spec, lu, 255.0);
-  vectorize::VectorizeInput in = io::loadGridInput({luPath, "", "", "", ""});
+  vectorize::VectorizeInput in = app::loadGridInput({luPath, "", "", "", ""});
   EXPECT_EQ(in.landUse.at(1, 1), 2);
   EXPECT_EQ(in.landUse.at(3, 2), 0);  // nodata = unused
 
@@ -293,7 +293,7 @@ TEST(GridInput, RastersMustShareTheGridAndHoldClassCodes) {
   const std::string densityPath = (dir / "density.tif").string();
   io::writeRasterBand(densityPath, shifted, Grid<float>(4, 3, 1.0f), std::nullopt);
   try {
-    io::loadGridInput({luPath, densityPath, "", "", ""});
+    app::loadGridInput({luPath, densityPath, "", "", ""});
     FAIL();
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("differ in geotransform"), std::string::npos) << e.what();
@@ -303,7 +303,7 @@ TEST(GridInput, RastersMustShareTheGridAndHoldClassCodes) {
   const std::string floatPath = (dir / "float.tif").string();
   io::writeRasterBand(floatPath, spec, notCodes, std::nullopt);
   try {
-    io::loadGridInput({floatPath, "", "", "", ""});
+    app::loadGridInput({floatPath, "", "", "", ""});
     FAIL();
   } catch (const Error& e) {
     EXPECT_EQ(
@@ -315,7 +315,7 @@ TEST(GridInput, RastersMustShareTheGridAndHoldClassCodes) {
   // The same raster mapped through -classes.
   const std::string classesPath = (dir / "classes.csv").string();
   std::ofstream(classesPath) << "value,class_name\n0.5,park\n";
-  in = io::loadGridInput({floatPath, "", "", "", classesPath});
+  in = app::loadGridInput({floatPath, "", "", "", classesPath});
   EXPECT_EQ(in.landUse.at(2, 2), static_cast<std::uint8_t>(LandUse::Park));
 
   // Parcel table naming an id that is not in the raster.
@@ -326,7 +326,7 @@ TEST(GridInput, RastersMustShareTheGridAndHoldClassCodes) {
   const std::string tablePath = (dir / "parcels.csv").string();
   std::ofstream(tablePath) << "parcel_id,land_use,population,cells\n3,residential,10,1\n8,commercial,0,2\n";
   try {
-    io::loadGridInput({luPath, "", idsPath, tablePath, ""});
+    app::loadGridInput({luPath, "", idsPath, tablePath, ""});
     FAIL();
   } catch (const Error& e) {
     EXPECT_EQ(std::string(e.what()), "parcel table '" + tablePath +

@@ -9,9 +9,9 @@
 #include <functional>
 #include <limits>
 
+#include "urbanvec/app/grid_input.hpp"
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/io/crs.hpp"
-#include "urbanvec/io/grid_input.hpp"
 #include "urbanvec/io/raster_io.hpp"
 
 using namespace urbanvec;
@@ -81,7 +81,7 @@ TEST(GridInput, RefusesALandUseGridInDegreesOrFeetSuggestingItsUtmZone) {
   const std::string degrees = (d / "degrees.tif").string();
   io::writeRasterBand(degrees, frame("EPSG:4326", 7.42, 43.74, 0.0001), lu, std::nullopt);
   EXPECT_EQ(message([&] {
-              io::loadGridInput({degrees, "", "", "", ""});
+              app::loadGridInput({degrees, "", "", "", ""});
             }),
             "land-use raster '" + degrees +
                 "' is in EPSG:4326; vectorize needs a projected CRS in metres (the grid is in degrees); "
@@ -90,7 +90,7 @@ TEST(GridInput, RefusesALandUseGridInDegreesOrFeetSuggestingItsUtmZone) {
   io::writeRasterBand(feet, frame("EPSG:2263", 985000, 203000, 30), lu, std::nullopt);
   EXPECT_EQ(
       message([&] {
-        io::loadGridInput({feet, "", "", "", ""});
+        app::loadGridInput({feet, "", "", "", ""});
       }),
       "land-use raster '" + feet +
           "' is in EPSG:2263; vectorize needs a projected CRS in metres (the grid is in US survey feet); "
@@ -98,10 +98,10 @@ TEST(GridInput, RefusesALandUseGridInDegreesOrFeetSuggestingItsUtmZone) {
   // Metres and no CRS at all (a warning elsewhere) are read.
   const std::string metres = (d / "metres.tif").string();
   io::writeRasterBand(metres, metricFrame(), lu, std::nullopt);
-  EXPECT_NO_THROW(io::loadGridInput({metres, "", "", "", ""}));
+  EXPECT_NO_THROW(app::loadGridInput({metres, "", "", "", ""}));
   const std::string none = (d / "none.tif").string();
   io::writeRasterBand(none, frame("", 0, 30, 10), lu, std::nullopt);
-  EXPECT_NO_THROW(io::loadGridInput({none, "", "", "", ""}));
+  EXPECT_NO_THROW(app::loadGridInput({none, "", "", "", ""}));
   fs::remove_all(d);
 }
 
@@ -117,7 +117,7 @@ TEST(GridInput, RefusesNegativeOrNonFiniteDensitiesButReadsNodataAsZero) {
     g.at(2, 1) = value;
     io::writeRasterBand(density, spec, g, std::nullopt);
     EXPECT_EQ(message([&] {
-                io::loadGridInput({lu, density, "", "", ""});
+                app::loadGridInput({lu, density, "", "", ""});
               }),
               "density raster '" + density + "' holds value " + shown +
                   " at column 2, row 1, which is not a population per cell (a finite number >= 0; only "
@@ -127,7 +127,7 @@ TEST(GridInput, RefusesNegativeOrNonFiniteDensitiesButReadsNodataAsZero) {
     Grid<float> g(4, 3, 1.5f);
     g.at(2, 1) = nodata;
     io::writeRasterBand(density, spec, g, static_cast<double>(nodata));
-    const vectorize::VectorizeInput in = io::loadGridInput({lu, density, "", "", ""});
+    const vectorize::VectorizeInput in = app::loadGridInput({lu, density, "", "", ""});
     EXPECT_EQ(in.density.at(2, 1), 0.0f);
     EXPECT_EQ(in.density.at(1, 2), 1.5f);
   }
@@ -148,7 +148,7 @@ TEST(GridInput, ReadsParcelTablesSeparatedByCommasSemicolonsOrTabs) {
         std::string("parcel_id;land_use;population;cells\n1;residential;12,5;11\n2;park;0;1\n"),
         std::string("parcel_id\tland_use\tpopulation\tcells\n1\tresidential\t12.5\t11\n2\tpark\t0\t1\n")}) {
     std::ofstream(table) << text;
-    const vectorize::VectorizeInput in = io::loadGridInput({lu, "", idsPath, table, ""});
+    const vectorize::VectorizeInput in = app::loadGridInput({lu, "", idsPath, table, ""});
     ASSERT_EQ(in.parcelTable.size(), 2u) << text;
     EXPECT_EQ(in.parcelTable[0].id, 1);
     EXPECT_EQ(in.parcelTable[0].use, LandUse::Residential);
@@ -158,7 +158,7 @@ TEST(GridInput, ReadsParcelTablesSeparatedByCommasSemicolonsOrTabs) {
   }
   std::ofstream(table) << "parcel_id;land_use;population;cells\n1,residential,1,11\n";
   EXPECT_EQ(message([&] {
-              io::loadGridInput({lu, "", idsPath, table, ""});
+              app::loadGridInput({lu, "", idsPath, table, ""});
             }),
             "parcel table '" + table +
                 "' line 2 has too few columns (the header separates columns with semicolons, this line seems "
@@ -166,14 +166,14 @@ TEST(GridInput, ReadsParcelTablesSeparatedByCommasSemicolonsOrTabs) {
   std::ofstream(table) << "id\tuse\tpopulation\tcells\n1\tresidential\t1\t11\n";
   EXPECT_EQ(
       message([&] {
-        io::loadGridInput({lu, "", idsPath, table, ""});
+        app::loadGridInput({lu, "", idsPath, table, ""});
       }),
       "parcel table '" + table +
           "' has no column 'parcel_id' (expected parcel_id,land_use,population,cells, separated by tabs)");
   // A comma table keeps its message.
   std::ofstream(table) << "id,use,population,cells\n1,residential,1,11\n";
   EXPECT_EQ(message([&] {
-              io::loadGridInput({lu, "", idsPath, table, ""});
+              app::loadGridInput({lu, "", idsPath, table, ""});
             }),
             "parcel table '" + table +
                 "' has no column 'parcel_id' (expected parcel_id,land_use,population,cells)");
@@ -184,7 +184,7 @@ TEST(GridInput, ReadsClassTablesSeparatedBySemicolons) {
   const fs::path d = freshDir("classes");
   const std::string classes = (d / "classes.csv").string();
   std::ofstream(classes) << "# from a spreadsheet\nvalue;class_name\n0,5;park\n12;water\n";
-  const auto table = io::readClassTable(classes);
+  const auto table = app::readClassTable(classes);
   ASSERT_EQ(table.size(), 2u);
   EXPECT_EQ(table[0].first, 0.5);
   EXPECT_EQ(table[0].second, LandUse::Park);

@@ -1,6 +1,6 @@
 // Reading city vectors with OGR (issue 2 §2 "Input": OSM through GDAL's OSM driver, GeoPackage and
 // shapefile layers named by options).
-#include "urbanvec/io/city_source.hpp"
+#include "urbanvec/app/city_source.hpp"
 
 #include <gdal_priv.h>
 #include <ogr_geometry.h>
@@ -16,7 +16,10 @@
 #include "urbanvec/io/crs.hpp"
 #include "urbanvec/io/gdal_init.hpp"
 
-namespace urbanvec::io {
+namespace urbanvec::app {
+
+// The adapters read files through io's readers and helpers.
+using namespace urbanvec::io;
 
 namespace {
 
@@ -421,4 +424,4 @@ CityData readCitySource(const std::string& path, const CitySourceOptions& option
   return city;
 }
 
-}  // namespace urbanvec::io
+}  // namespace urbanvec::app

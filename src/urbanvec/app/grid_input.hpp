@@ -1,6 +1,8 @@
 // Loading the gridded input of `vectorize` (CONVENTIONS.md "Gridded input"): land-use, density and
 // parcel rasters plus the parcel table and an optional value-to-class table, checked to share one grid,
 // into the plain VectorizeInput.
+// An app-layer adapter: it knows both GDAL (through io) and the vectorizer's input types, so io stays
+// below the modules (docs/architecture.md).
 #pragma once
 
 #include <string>
@@ -8,7 +10,7 @@
 
 #include "urbanvec/vectorize/vectorize_input.hpp"
 
-namespace urbanvec::io {
+namespace urbanvec::app {
 
 struct GridInputPaths {
   std::string landUse;      ///< required
@@ -26,4 +28,4 @@ vectorize::VectorizeInput loadGridInput(const GridInputPaths& paths,
 /// Parses a `value,class_name` table (header optional, '#' comments allowed) into value -> class.
 std::vector<std::pair<double, LandUse>> readClassTable(const std::string& path);
 
-}  // namespace urbanvec::io
+}  // namespace urbanvec::app

@@ -1,6 +1,8 @@
 // Reading real city vectors (OpenStreetMap .osm/.pbf through GDAL's OSM driver, GeoPackage,
 // shapefile, any OGR source) into the plain data gridify consumes, reprojected to the grid's CRS
 // (issue 2 §2 "Input"; docs/gridify.md "Input").
+// An app-layer adapter: it knows both GDAL (through io) and gridify's input types, so io stays below
+// the modules (docs/architecture.md).
 #pragma once
 
 #include <functional>
@@ -10,7 +12,7 @@
 #include "urbanvec/gridify/city_data.hpp"
 #include "urbanvec/gridify/class_mapping.hpp"
 
-namespace urbanvec::io {
+namespace urbanvec::app {
 
 struct CitySourceOptions {
   std::string assignedCrs;  ///< -a_srs: CRS of an input that has none (or overrides its own)
@@ -44,4 +46,4 @@ gridify::CityData readCitySource(const std::string& path, const CitySourceOption
 std::string chooseGridCrs(const std::string& sourceWkt, double centreX, double centreY,
                           const std::string& userTarget);
 
-}  // namespace urbanvec::io
+}  // namespace urbanvec::app

@@ -1,4 +1,4 @@
-#include "urbanvec/io/grid_input.hpp"
+#include "urbanvec/app/grid_input.hpp"
 
 #include <ogr_spatialref.h>
 
@@ -16,7 +16,10 @@
 #include "urbanvec/io/crs.hpp"
 #include "urbanvec/io/raster_io.hpp"
 
-namespace urbanvec::io {
+namespace urbanvec::app {
+
+// The adapters read files through io's readers and helpers.
+using namespace urbanvec::io;
 
 namespace {
 
@@ -342,4 +345,4 @@ vectorize::VectorizeInput loadGridInput(const GridInputPaths& paths, std::vector
   return in;
 }
 
-}  // namespace urbanvec::io
+}  // namespace urbanvec::app
