@@ -48,6 +48,17 @@ def install_prefix(folder=None):
     return os.sep.join(parts[:-len(INSTALLED_PLUGIN_DIR)]) or os.sep
 
 
+def installed_program():
+    """The program path `cmake --install` recorded beside this plugin (install_paths.py), or None for a
+    plugin that was not installed that way."""
+    try:
+        from . import install_paths
+    except ImportError:
+        return None
+    program = getattr(install_paths, 'PROGRAM', '')
+    return program or None
+
+
 def configured_program():
     """The program path from the Processing setting, '' when unset."""
     value = QgsSettings().value(_SETTINGS_KEY, '')
@@ -73,8 +84,11 @@ def _candidates():
         yield setting, os.path.abspath(os.path.expanduser(configured)), None
     else:
         yield setting, None, 'not set'
+    installed = installed_program()
     prefix = install_prefix()
-    if prefix:
+    if installed:
+        yield 'the install prefix {}'.format(os.path.dirname(os.path.dirname(installed))), installed, None
+    elif prefix:
         yield 'the install prefix {}'.format(prefix), os.path.join(prefix, 'bin', 'urbanvec'), None
     else:
         yield 'the install prefix', None, 'none, this plugin ({}) was not installed by cmake --install'.format(

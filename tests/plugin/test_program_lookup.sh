@@ -120,6 +120,16 @@ message 'not set' "the install prefix $prefix: $prefix/bin/urbanvec is not execu
   > "$WORK/expected_prefix_none.txt"
 same_text "$WORK/expected_prefix_none.txt" "$WORK/prefix_none.err" "the message naming the install prefix"
 chmod +x "$prefix/bin/urbanvec"
+# A plugin copied into a profile's plugin folder (or installed with URBANVEC_QGIS_PLUGIN_DIR pointing
+# there) still finds the program through the install_paths.py that cmake --install wrote.
+mkdir -p "$WORK/profile_plugins"
+cp -r "$installed_plugins/urbanvec" "$WORK/profile_plugins/"
+grep -qxF "PROGRAM = r'$prefix/bin/urbanvec'" "$WORK/profile_plugins/urbanvec/install_paths.py" \
+  || fail "cmake --install did not record the program in install_paths.py"
+export QGIS_PLUGINPATH="$WORK/profile_plugins"
+qp profile list
+urbanvec_algorithms profile | grep -qw 'urbanvec:vectorize' || fail "a plugin moved out of the prefix lost the installed program"
+chmod +x "$prefix/bin/urbanvec"
 export QGIS_PLUGINPATH="$URBANVEC_SOURCE_DIR/plugin" PYTHONPATH="/usr/share/qgis/python/plugins:$URBANVEC_SOURCE_DIR/plugin"
 echo "(b) the install prefix: $(urbanvec_algorithms prefix | wc -w) algorithms; it comes before PATH"
 
