@@ -160,8 +160,8 @@ void addIslandBlocks(const geos::Context& ctx, const SimulatedCity& city, const 
   auto undeveloped = [&](int c, int r) {
     if (!grid.inside(c, r)) return true;
     const LandUse u = grid.at(c, r);
-    return u == LandUse::Unused || (options.waterIsUndeveloped && u == LandUse::Water) ||
-           (options.reservedIsUndeveloped && u == LandUse::Reserved && blockOfCell.at(c, r) < 0);
+    return u == LandUse::Unused || (options.undeveloped.waterIsUndeveloped && u == LandUse::Water) ||
+           (options.undeveloped.reservedIsUndeveloped && u == LandUse::Reserved && blockOfCell.at(c, r) < 0);
   };
   std::vector<geos::GeomPtr> kept;
   std::vector<const GEOSGeometry*> keptRaw;

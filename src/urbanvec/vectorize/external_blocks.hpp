@@ -19,6 +19,7 @@
 #include "urbanvec/core/geometry.hpp"
 #include "urbanvec/core/grid.hpp"
 #include "urbanvec/core/progress.hpp"
+#include "urbanvec/vectorize/perimeters.hpp"
 #include "urbanvec/vectorize/road_geometry.hpp"
 #include "urbanvec/vectorize/road_network.hpp"
 
@@ -46,10 +47,10 @@ struct ExternalBlocksOptions {
   /// face; its cell outline, smoothed like a boundary line, becomes its block. false = such blocks
   /// go to the failsafe.
   bool islandBlocks = true;
-  /// Which land around an island counts as undeveloped, as PerimeterOptions (A4.8); vectorize copies
-  /// them from there so the islands are exactly the blocks A4.8 gave only closed loops.
-  bool waterIsUndeveloped = true;
-  bool reservedIsUndeveloped = true;
+  /// Which land around an island counts as undeveloped: A4.8's own definition (vectorize hands the
+  /// road stage's PerimeterOptions over), so the islands are exactly the blocks A4.8 gave only closed
+  /// loops.
+  PerimeterOptions undeveloped;
   /// [INFERENCE] D3 counts a boundary line's nodes at this spacing along it, in pw: the A4.8 line had
   /// a node at every cell corner, but output simplification kept only its turns, and a straight
   /// two-point line between two culs-de-sac (both ends in pavement, all its length in the open)

@@ -272,8 +272,7 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
     const auto t0 = std::chrono::steady_clock::now();
     resetPeakMemory();
     CityOptions city = options.city;
-    city.blocks.external.waterIsUndeveloped = options.perimeters.waterIsUndeveloped;
-    city.blocks.external.reservedIsUndeveloped = options.perimeters.reservedIsUndeveloped;
+    city.blocks.external.undeveloped = options.perimeters;
     result.city = vectorizeCity(result.network, result.cells, result.blocks, result.parcels, input.spec, city,
                                 subProgress(progress, 0.3, 1.0));
     StageReport report;
