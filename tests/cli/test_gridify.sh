@@ -122,16 +122,16 @@ expect_stderr_contains "$WORK/corrupt.gpkg"
 expect_missing "$WORK/out2"
 
 run_cmd gridify -tr 0 "$SRC/monaco.osm.pbf" "$WORK/out3"
-expect_status 1
+expect_status 2
 expect_stderr "ERROR: -tr: the cell size must be a positive number of metres, got 0"
 expect_missing "$WORK/out3"
 
 run_cmd gridify -tr -5 "$SRC/monaco.osm.pbf" "$WORK/out3"
-expect_status 1
+expect_status 2
 expect_missing "$WORK/out3"
 
 run_cmd gridify -te 500 500 500 600 "$SRC/monaco.osm.pbf" "$WORK/out4"
-expect_status 1
+expect_status 2
 expect_stderr_contains "-te"
 expect_missing "$WORK/out4"
 
