@@ -19,7 +19,7 @@ BUILD=${1:-build-asan}
 LOGS="$BUILD/sanitize-logs"
 
 cmake -S . -B "$BUILD" -G Ninja -DURBANVEC_SANITIZE=ON
-cmake --build "$BUILD" -j"${JOBS:-2}" --target urbanvec_cli unit_vectorize unit_blocks unit_parcels
+cmake --build "$BUILD" -j"${JOBS:-2}" --target urbanvec_cli unit_vectorize unit_vectorize_roads unit_vectorize_pavement unit_vectorize_blocks unit_vectorize_parcels
 rm -rf "$LOGS"
 mkdir -p "$LOGS"
 
@@ -49,7 +49,7 @@ step() {
   fi
 }
 
-for module in vectorize blocks parcels; do
+for module in vectorize vectorize_roads vectorize_pavement vectorize_blocks vectorize_parcels; do
   step "unit_$module" "$BUILD/bin/unit_$module" --gtest_brief=1
 done
 

@@ -95,6 +95,14 @@ app::CommandSpec spec() {
                           .withUnit("cells")
                           .atLeast(1e-3)
                           .isAdvanced());
+  s.options.push_back(option("-network-snap", ValueType::Real, "<cells>",
+                             "Road ends closer than this join when the networks are noded for their "
+                             "intersection, dead-end and component counts (0 = exact).")
+                          .byDefault(app::numberText(defaults.networkSnapCells))
+                          .withUnit("cells")
+                          .atLeast(0)
+                          .atMost(1)
+                          .isAdvanced());
   s.examples = {
       "urbanvec evaluate -json report.json city.gpkg sample_data/monaco/truth.gpkg",
       "urbanvec evaluate -roads-from grass_centrelines.gpkg -blocks-layer out -blocks-where \"DN >= 4\" "
@@ -210,6 +218,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   options.blockMatchIoU = args.real("-min-iou");
   options.minTruthBlockCells = args.real("-min-block-cells");
   options.sampleSpacingCells = args.real("-sample-spacing");
+  options.networkSnapCells = args.real("-network-snap");
   const evaluate::EvaluationReport report =
       evaluate::evaluate(input, options, subProgress(ctx.progress, 0.3, 1.0));
   if (!report.layersOverlap)

@@ -12,9 +12,9 @@
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/io/atomic_output.hpp"
 #include "urbanvec/io/vector_io.hpp"
-#include "urbanvec/vectorize/road_checks.hpp"
-#include "urbanvec/vectorize/road_output.hpp"
-#include "urbanvec/vectorize/vectorize.hpp"
+#include "urbanvec/vectorize/pipeline.hpp"
+#include "urbanvec/vectorize/roads/road_checks.hpp"
+#include "urbanvec/vectorize/roads/road_output.hpp"
 
 namespace urbanvec {
 namespace {

@@ -8,6 +8,7 @@
 
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/core/geos.hpp"
+#include "urbanvec/core/planar_graph.hpp"
 #include "urbanvec/evaluate/polygon_metrics.hpp"
 #include "urbanvec/evaluate/road_metrics.hpp"
 
@@ -49,6 +50,20 @@ double totalLengthKm(const std::vector<LineString>& lines) {
   return metres / 1000.0;
 }
 
+NetworkSummary summariseNetwork(const std::vector<LineString>& lines, double snap) {
+  const PlanarGraph graph = PlanarGraph::fromLines(lines, snap);
+  NetworkSummary out;
+  for (std::size_t n = 0; n < graph.nodeCount(); ++n) {
+    const int degree = graph.degree(static_cast<int>(n));
+    if (degree >= 3) ++out.intersections;
+    if (degree == 1) ++out.deadEnds;
+  }
+  int components = 0;
+  graph.components(&components);
+  out.components = static_cast<std::size_t>(components);
+  return out;
+}
+
 RoadReport measureRoads(const EvaluationInput& input, const EvaluateOptions& options,
                         const Progress& progress) {
   RoadReport report;
@@ -59,6 +74,7 @@ RoadReport measureRoads(const EvaluationInput& input, const EvaluateOptions& opt
     report.truthLines = count;
     report.truthLengthKm = totalLengthKm(truthLines);
     report.truthTurningPerKm = turningPerKm(truthLines);
+    report.truthNetwork = summariseNetwork(truthLines, options.networkSnapCells * input.cellSize);
   }
   if (input.result.roads) {
     std::size_t count = 0;
@@ -66,6 +82,7 @@ RoadReport measureRoads(const EvaluationInput& input, const EvaluateOptions& opt
     report.resultLines = count;
     report.resultLengthKm = totalLengthKm(resultLines);
     report.resultTurningPerKm = turningPerKm(resultLines);
+    report.resultNetwork = summariseNetwork(resultLines, options.networkSnapCells * input.cellSize);
   }
   if (report.truthTurningPerKm && report.resultTurningPerKm && *report.truthTurningPerKm > 0.0)
     report.turningRatio = *report.resultTurningPerKm / *report.truthTurningPerKm;

@@ -29,6 +29,9 @@ struct EvaluationInput {
 };
 
 struct EvaluateOptions {
+  /// Road ends closer than this join when the networks are noded for their graph figures, in cells
+  /// (a vectorizer's segments meet exactly; OSM-made truth pieces meet within rounding).
+  double networkSnapCells = 0.01;
   /// Spacing of the sample points along road centrelines, in cells (the issue asks for a quarter cell).
   double sampleSpacingCells = 0.25;
   /// Field holding a road's class (no unit); roads without it are all counted.
@@ -55,6 +58,15 @@ struct DistanceSummary {
   double p95Cells = 0.0;
 };
 
+/// The road network as a graph (core/planar_graph: lines noded where they cross or touch, ends within
+/// a snap tolerance joined): what distances and turning do not see — fragmentation into pieces and
+/// dangling ends.
+struct NetworkSummary {
+  std::size_t intersections = 0;  ///< nodes of degree 3 or more
+  std::size_t deadEnds = 0;       ///< nodes of degree 1
+  std::size_t components = 0;     ///< connected pieces of the network
+};
+
 struct RoadReport {
   std::optional<std::size_t> truthLines;  ///< road features counted (excluded classes left out)
   std::optional<std::size_t> resultLines;
@@ -66,6 +78,8 @@ struct RoadReport {
   std::optional<double> resultTurningPerKm;
   /// result / truth turning per km; absent when either side is absent or the truth never turns.
   std::optional<double> turningRatio;
+  std::optional<NetworkSummary> truthNetwork;
+  std::optional<NetworkSummary> resultNetwork;
 };
 
 struct BlockReport {

@@ -97,6 +97,15 @@ std::string formatReportTable(const EvaluationReport& report, const ReportInputs
   if (!r.turningRatio && r.truthTurningPerKm && r.resultTurningPerKm)
     ratio = "undefined (the truth roads never turn)";
   rows.push_back({"roads: turning ratio result/truth", ratio});
+  auto network = [](const std::optional<NetworkSummary>& n) {
+    if (!n) return std::string("absent");
+    char text[96];
+    std::snprintf(text, sizeof text, "%zu intersections, %zu dead ends, %zu components", n->intersections,
+                  n->deadEnds, n->components);
+    return std::string(text);
+  };
+  rows.push_back({"roads: network truth", network(r.truthNetwork)});
+  rows.push_back({"roads: network result", network(r.resultNetwork)});
   rows.push_back({"blocks: count truth / result", count(b.truthCount) + " / " + count(b.resultCount)});
   if (b.truthSmallCount)
     rows.push_back({"blocks: truth < " + format("%g", b.minTruthBlockCells) + " cells, not counted",
@@ -166,6 +175,16 @@ std::string formatReportJson(const EvaluationReport& report, const ReportInputs&
   roads["truth_turning_deg_per_km"] = orNull(r.truthTurningPerKm);
   roads["result_turning_deg_per_km"] = orNull(r.resultTurningPerKm);
   roads["turning_ratio"] = orNull(r.turningRatio);
+  auto networkJson = [](const std::optional<NetworkSummary>& n) {
+    if (!n) return nlohmann::ordered_json();
+    nlohmann::ordered_json out;
+    out["intersections"] = n->intersections;
+    out["dead_ends"] = n->deadEnds;
+    out["components"] = n->components;
+    return out;
+  };
+  roads["truth_network"] = networkJson(r.truthNetwork);
+  roads["result_network"] = networkJson(r.resultNetwork);
   j["roads"] = roads;
   nlohmann::ordered_json blocks;
   blocks["truth_count"] = orNull(b.truthCount);

@@ -8,7 +8,7 @@
 
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/core/geos.hpp"
-#include "urbanvec/vectorize/road_output.hpp"
+#include "urbanvec/vectorize/roads/road_output.hpp"
 
 namespace urbanvec::vectorize {
 

@@ -10,8 +10,8 @@
 #include "urbanvec/core/grid.hpp"
 #include "urbanvec/core/layer.hpp"
 #include "urbanvec/core/progress.hpp"
-#include "urbanvec/vectorize/blocks_pipeline.hpp"
-#include "urbanvec/vectorize/parcels_pipeline.hpp"
+#include "urbanvec/vectorize/blocks/blocks_pipeline.hpp"
+#include "urbanvec/vectorize/parcels/parcels_pipeline.hpp"
 #include "urbanvec/vectorize/vectorize_input.hpp"
 
 namespace urbanvec::vectorize {

@@ -67,6 +67,44 @@ TEST(RoadDistance, LineOffsetByHalfACellIsHalfACellBothWays) {
   EXPECT_FALSE(report.roads.turningRatio.has_value()) << "two straight lines: the truth never turns";
 }
 
+TEST(RoadNetwork, IntersectionsDeadEndsAndComponentsOfTheNodedNetwork) {
+  EvaluationInput input;
+  input.cellSize = 10.0;
+  // Truth: a crossroads drawn as two whole lines (noded where they cross) and a street apart.
+  input.truth.roads = roadLayer({{{{0, 50}, {100, 50}}, "secondary"},
+                                 {{{50, 0}, {50, 100}}, "secondary"},
+                                 {{{200, 0}, {300, 0}}, "secondary"}});
+  // Result: the same crossroads in four segments meeting at the node, one arm ending 0.05 m (well
+  // within the snap of 0.01 cell = 0.1 m) short of it, and the separate street broken in two pieces
+  // that meet exactly.
+  input.result.roads = roadLayer({{{{0, 50}, {50, 50}}, "secondary"},
+                                  {{{50, 50}, {100, 50}}, "secondary"},
+                                  {{{50, 0}, {50, 49.95}}, "secondary"},
+                                  {{{50, 50}, {50, 100}}, "secondary"},
+                                  {{{200, 0}, {250, 0}}, "secondary"},
+                                  {{{250, 0}, {300, 0}}, "secondary"},
+                                  {{{200, 0}, {200, -100}}, "perimeter"}});
+  const EvaluationReport report = evaluate(input);
+  ASSERT_TRUE(report.roads.truthNetwork && report.roads.resultNetwork);
+  for (const NetworkSummary& n : {*report.roads.truthNetwork, *report.roads.resultNetwork}) {
+    EXPECT_EQ(n.intersections, 1u);
+    EXPECT_EQ(n.deadEnds, 6u);  // four arms and the street's two ends; perimeter lines are not roads
+    EXPECT_EQ(n.components, 2u);
+  }
+  // Without the snap the short arm is a piece of its own: the crossroads becomes a T.
+  EvaluateOptions exact;
+  exact.networkSnapCells = 0.0;
+  const EvaluationReport apart = evaluate(input, exact);
+  EXPECT_EQ(apart.roads.resultNetwork->intersections, 1u);
+  EXPECT_EQ(apart.roads.resultNetwork->deadEnds, 7u);
+  EXPECT_EQ(apart.roads.resultNetwork->components, 3u);
+  const std::string table = formatReportTable(report, {"r.gpkg", "t.gpkg", "", "", "", "", "", ""});
+  EXPECT_NE(
+      table.find("roads: network result                   1 intersections, 6 dead ends, 2 components\n"),
+      std::string::npos)
+      << table;
+}
+
 TEST(RoadDistance, OneSidedDistancesDifferWhenTheResultMissesARoad) {
   // The result has only the first of two parallel roads 40 m apart: truth samples on the second are
   // 40 m (4 cells) from the result, while every result sample lies on the truth.

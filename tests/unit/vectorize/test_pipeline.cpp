@@ -10,9 +10,9 @@
 #include "urbanvec/app/grid_input.hpp"
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/io/raster_io.hpp"
-#include "urbanvec/vectorize/road_checks.hpp"
-#include "urbanvec/vectorize/road_output.hpp"
-#include "urbanvec/vectorize/vectorize.hpp"
+#include "urbanvec/vectorize/pipeline.hpp"
+#include "urbanvec/vectorize/roads/road_checks.hpp"
+#include "urbanvec/vectorize/roads/road_output.hpp"
 
 using namespace urbanvec;
 using namespace urbanvec::vectorize;

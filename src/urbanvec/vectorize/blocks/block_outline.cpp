@@ -1,0 +1,188 @@
+// Stage D1, "Block outlining" (shared/specs/sexton-vectorizer.md §3 D1, §10, §11.4).
+#include "urbanvec/vectorize/blocks/block_outline.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "urbanvec/core/error.hpp"
+#include "urbanvec/core/geos.hpp"
+
+namespace urbanvec::vectorize {
+
+void orientClockwise(Polygon& polygon) {
+  if (signedArea(polygon.outer) > 0.0) std::reverse(polygon.outer.begin(), polygon.outer.end());
+  for (Ring& hole : polygon.holes)
+    if (signedArea(hole) < 0.0) std::reverse(hole.begin(), hole.end());
+}
+
+OrientedBox orientedBoundingBox(const Polygon& polygon) {
+  OrientedBox box;
+  if (polygon.outer.size() < 4) return box;
+  // Moments relative to the first vertex keep the sums well conditioned in large frames.
+  const Vec2 ref = polygon.outer.front();
+  double a = 0.0, sx = 0.0, sy = 0.0, sxx = 0.0, syy = 0.0, sxy = 0.0;
+  auto accumulate = [&](const Ring& ring, double sign) {
+    for (size_t i = 0; i + 1 < ring.size(); ++i) {
+      const Vec2 p = ring[i] - ref;
+      const Vec2 q = ring[i + 1] - ref;
+      const double c = sign * cross(p, q);
+      a += c / 2.0;
+      sx += (p.x + q.x) * c / 6.0;
+      sy += (p.y + q.y) * c / 6.0;
+      sxx += (p.x * p.x + p.x * q.x + q.x * q.x) * c / 12.0;
+      syy += (p.y * p.y + p.y * q.y + q.y * q.y) * c / 12.0;
+      sxy += (p.x * q.y + 2.0 * p.x * p.y + 2.0 * q.x * q.y + q.x * p.y) * c / 24.0;
+    }
+  };
+  accumulate(polygon.outer, signedArea(polygon.outer) >= 0.0 ? 1.0 : -1.0);
+  for (const Ring& hole : polygon.holes) accumulate(hole, signedArea(hole) >= 0.0 ? -1.0 : 1.0);
+  if (!(a > 0.0)) return box;
+  const double cx = sx / a, cy = sy / a;
+  const double cxx = sxx / a - cx * cx, cyy = syy / a - cy * cy, cxy = sxy / a - cx * cy;
+  auto extents = [&](double theta, double& minU, double& maxU, double& minV, double& maxV) {
+    const Vec2 u{std::cos(theta), std::sin(theta)};
+    const Vec2 v{-u.y, u.x};
+    minU = minV = 1e300;
+    maxU = maxV = -1e300;
+    for (const Vec2& p : polygon.outer) {
+      const Vec2 d = p - ref;
+      minU = std::min(minU, dot(d, u));
+      maxU = std::max(maxU, dot(d, u));
+      minV = std::min(minV, dot(d, v));
+      maxV = std::max(maxV, dot(d, v));
+    }
+  };
+  double theta = 0.5 * std::atan2(2.0 * cxy, cxx - cyy);
+  // An isotropic shape (square, disc) has no principal axis: PCA's angle is then rounding noise, so
+  // take the tightest box over the outline's edge directions instead.
+  const double spread = std::hypot(cxx - cyy, 2.0 * cxy);
+  if (spread <= 1e-3 * (cxx + cyy)) {
+    double bestArea = 1e300;
+    for (size_t i = 0; i + 1 < polygon.outer.size(); ++i) {
+      const Vec2 e = polygon.outer[i + 1] - polygon.outer[i];
+      if (length(e) <= 0.0) continue;
+      const double candidate = std::atan2(e.y, e.x);
+      double a0, a1, b0, b1;
+      extents(candidate, a0, a1, b0, b1);
+      if ((a1 - a0) * (b1 - b0) < bestArea * (1.0 - 1e-9)) {
+        bestArea = (a1 - a0) * (b1 - b0);
+        theta = candidate;
+      }
+    }
+  }
+  const Vec2 u{std::cos(theta), std::sin(theta)};
+  const Vec2 v{-u.y, u.x};
+  double minU, maxU, minV, maxV;
+  extents(theta, minU, maxU, minV, maxV);
+  const double extentU = maxU - minU, extentV = maxV - minV;
+  box.centre = ref + Vec2{cx, cy};
+  box.axis = extentU >= extentV ? u : v;
+  box.length = std::max(extentU, extentV);
+  box.width = std::min(extentU, extentV);
+  box.aspect = box.length > 0.0 ? box.width / box.length : 0.0;
+  box.diagonal = std::hypot(box.width, box.length);
+  return box;
+}
+
+int absorbSlivers(std::vector<PavementPiece>& pavement, const MultiPolygon& slivers, double precisionGrid) {
+  if (slivers.empty()) return 0;
+  geos::Context ctx;
+  std::vector<geos::GeomPtr> pieces;
+  std::vector<const GEOSGeometry*> raw;
+  for (const PavementPiece& p : pavement) {
+    pieces.push_back(ctx.multiPolygon(p.shape));
+    raw.push_back(pieces.back().get());
+  }
+  GeometryIndex index(ctx, raw);
+  std::vector<std::vector<geos::GeomPtr>> additions(pavement.size());
+  int absorbed = 0;
+  for (const Polygon& sliver : slivers) {
+    geos::GeomPtr g = ctx.polygon(sliver);
+    for (int k : index.query(g.get())) {
+      double d = 1.0;
+      GEOSDistance_r(ctx.handle(), raw[k], g.get(), &d);
+      if (d > 10.0 * precisionGrid) continue;
+      additions[k].push_back(std::move(g));
+      ++absorbed;
+      break;
+    }
+  }
+  for (size_t k = 0; k < pavement.size(); ++k) {
+    if (additions[k].empty()) continue;
+    additions[k].push_back(std::move(pieces[k]));
+    geos::GeomPtr merged = unionOnGrid(ctx, std::move(additions[k]), precisionGrid);
+    MultiPolygon shape = ctx.toPolygons(merged.get());
+    for (Polygon& p : shape) orientClockwise(p);
+    pavement[k].shape = std::move(shape);
+  }
+  return absorbed;
+}
+
+BlockOutline outlineBlocks(const std::vector<PavementPiece>& pavement, const BlockOutlineOptions& options,
+                           const Progress& progress) {
+  if (!(options.precisionGrid > 0.0))
+    throw invalidOption("The precision grid must be positive, got " + std::to_string(options.precisionGrid) +
+                        ".");
+  reportProgress(progress, 0.0, "block outlining");
+  geos::Context ctx;
+  const double grid = options.precisionGrid;
+  std::vector<geos::GeomPtr> parts;
+  for (const PavementPiece& piece : pavement) parts.push_back(ctx.multiPolygon(piece.shape));
+  geos::GeomPtr all = unionOnGrid(ctx, std::move(parts), grid);
+  BlockOutline out;
+  out.pavementUnion = ctx.toPolygons(all.get());
+  reportProgress(progress, 0.5, "block outlining");
+
+  const MultiPolygon& components = out.pavementUnion;
+  std::vector<geos::GeomPtr> filled;
+  std::vector<geos::GeomPtr> probes;  // one point inside each component's pavement
+  std::vector<const GEOSGeometry*> filledRaw;
+  for (const Polygon& c : components) {
+    filled.push_back(ctx.polygon(Polygon{c.outer, {}}));
+    geos::GeomPtr solid = ctx.polygon(c);
+    probes.push_back(ctx.own(GEOSPointOnSurface_r(ctx.handle(), solid.get()), "point on surface"));
+    filledRaw.push_back(filled.back().get());
+  }
+  GeometryIndex index(ctx, filledRaw);
+  std::vector<bool> nested(components.size(), false);
+  const Progress holes = subProgress(progress, 0.5, 1.0);
+  ProgressTicker ticker(holes, "block outlining", components.size());
+  for (size_t k = 0; k < components.size(); ++k) {
+    for (const Ring& holeRing : components[k].holes) {
+      geos::GeomPtr hole = ctx.polygon(Polygon{holeRing, {}});
+      std::vector<geos::GeomPtr> inside;
+      for (int j : index.query(hole.get())) {
+        if (static_cast<size_t>(j) == k) continue;
+        if (GEOSContains_r(ctx.handle(), hole.get(), probes[j].get()) == 1) {
+          nested[j] = true;
+          inside.push_back(ctx.own(GEOSGeom_clone_r(ctx.handle(), filled[j].get()), "clone"));
+        }
+      }
+      MultiPolygon faces;
+      if (inside.empty()) {
+        faces.push_back(Polygon{holeRing, {}});
+      } else {
+        geos::GeomPtr cut = unionOnGrid(ctx, std::move(inside), grid);
+        geos::GeomPtr face =
+            ctx.own(GEOSDifferencePrec_r(ctx.handle(), hole.get(), cut.get(), grid), "difference");
+        faces = ctx.toPolygons(face.get());
+      }
+      for (Polygon& f : faces) {
+        if (!(area(f) > 0.0)) continue;
+        orientClockwise(f);
+        (area(f) < options.minBlockArea ? out.slivers : out.internalBlocks).push_back(std::move(f));
+      }
+    }
+    ticker.tick();
+  }
+  for (size_t k = 0; k < components.size(); ++k) {
+    if (nested[k]) continue;
+    Polygon p{components[k].outer, {}};
+    orientClockwise(p);
+    out.perimeter.push_back(std::move(p));
+  }
+  ticker.finish();
+  return out;
+}
+
+}  // namespace urbanvec::vectorize

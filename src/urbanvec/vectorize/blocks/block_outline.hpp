@@ -1,0 +1,65 @@
+// Stage D1 of shared/specs/sexton-vectorizer.md, "Block outlining" [DOC T §3.4; P §3.3.1]: the faces
+// enclosed by curbs become internal blocks, the outer boundary of each road network is kept aside as
+// the perimeter, and every block gets its PCA oriented bounding box and diagonal.
+//
+// The face walk of the curb linework is done by GEOS overlay: the pavement pieces of stage C are
+// unioned on the precision grid, and the holes of that union are exactly the bounded faces of the curb
+// arrangement that contain no pavement (spec §3 D1 [INFERENCE] "a face is a block face iff it does not
+// intersect the interior of any pavement polygon"). The exterior ring of each road component is its
+// perimeter. Road networks lying inside another network's block are cut out of that block.
+//
+// All coordinates are in the internal frame of spec §0 (cells).
+#pragma once
+
+#include <vector>
+
+#include "urbanvec/core/geometry.hpp"
+#include "urbanvec/core/progress.hpp"
+#include "urbanvec/vectorize/pavement/road_geometry.hpp"
+
+namespace urbanvec::vectorize {
+
+struct BlockOutlineOptions {
+  /// Faces smaller than this are gaps between pavement pieces left by snap rounding, not blocks: they
+  /// are handed back to the pavement, in cells² ([INFERENCE]; real slivers are 1e-13..1e-6 cells²).
+  double minBlockArea = 0.1;
+  /// Overlay precision grid, in cells (see kDefaultPrecisionGrid).
+  double precisionGrid = kDefaultPrecisionGrid;
+};
+
+struct BlockOutline {
+  /// Internal blocks: outer ring clockwise, holes counter-clockwise (spec: clockwise blocks).
+  std::vector<Polygon> internalBlocks;
+  /// The area inside the outer road perimeter of every top-level road network (pavement plus
+  /// internal blocks), outer rings clockwise (spec D1 "save it as the perimeter").
+  MultiPolygon perimeter;
+  /// Union of all pavement, on the precision grid.
+  MultiPolygon pavementUnion;
+  /// Faces below minBlockArea: they belong to the pavement (see absorbSlivers).
+  MultiPolygon slivers;
+};
+
+BlockOutline outlineBlocks(const std::vector<PavementPiece>& pavement, const BlockOutlineOptions& options,
+                           const Progress& progress = {});
+
+/// Merges every sliver into the first pavement piece it touches, so pavement and blocks still tile.
+/// Returns how many found a piece.
+int absorbSlivers(std::vector<PavementPiece>& pavement, const MultiPolygon& slivers, double precisionGrid);
+
+/// PCA oriented bounding box (spec D1): axes from the area-weighted second moments of the polygon,
+/// extents from its outer ring projected on them.
+struct OrientedBox {
+  Vec2 centre;            ///< area centroid
+  Vec2 axis;              ///< unit direction of the long side
+  double length = 0.0;    ///< long extent, in the polygon's units
+  double width = 0.0;     ///< short extent, in the polygon's units
+  double aspect = 0.0;    ///< width / length in (0, 1]; 0 for a degenerate polygon
+  double diagonal = 0.0;  ///< sqrt(width^2 + length^2): BBD of the E5 cost
+};
+
+OrientedBox orientedBoundingBox(const Polygon& polygon);
+
+/// Makes the outer ring clockwise and the holes counter-clockwise (y-up frame).
+void orientClockwise(Polygon& polygon);
+
+}  // namespace urbanvec::vectorize

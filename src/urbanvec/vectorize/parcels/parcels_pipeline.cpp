@@ -1,0 +1,360 @@
+// Vectorizer part 3 driver (spec §1: "Per block, E1-E5 form one generate-and-test iteration. The
+// iteration runs 50 times and the lowest-cost result is kept"; E6 runs once on the kept result).
+#include "urbanvec/vectorize/parcels/parcels_pipeline.hpp"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <exception>
+#include <limits>
+#include <mutex>
+#include <thread>
+
+#include "urbanvec/core/error.hpp"
+#include "urbanvec/core/random.hpp"
+#include "urbanvec/vectorize/parcels/population.hpp"
+
+namespace urbanvec::vectorize::parcels {
+
+namespace {
+
+std::vector<UseParcel> useParcels(const std::vector<SubdivisionParcel>& parcels) {
+  std::vector<UseParcel> out;
+  for (const SubdivisionParcel& p : parcels) out.push_back({p.area, polygonMoments(p.polygon).centroid});
+  return out;
+}
+
+int countUndeveloped(const std::vector<UseChoice>& uses) {
+  return static_cast<int>(
+      std::count_if(uses.begin(), uses.end(), [](const UseChoice& c) { return c.undeveloped; }));
+}
+
+}  // namespace
+
+void validateParcelsOptions(const ParcelsOptions& o) {
+  if (o.tries < 1) throw invalidOption("-tries must be at least 1, got " + std::to_string(o.tries) + ".");
+  if (o.relaxationRounds < 0 || o.relaxedTries < 1)
+    throw invalidOption("relaxation rounds must be non-negative and relaxed tries at least 1.");
+  if (o.threads < 0) throw invalidOption("the thread count must be 0 (all cores) or more.");
+  if (o.spine.pixelsPerCell < 1 || o.spine.pixelsPerCell > 64)
+    throw invalidOption("the spine resolution must be 1 to 64 pixels per cell.");
+  if (o.spine.oblongAspect < 0.0 || o.spine.oblongAspect > 1.0)
+    throw invalidOption("the oblong aspect threshold must be within [0, 1].");
+  if (o.spine.trimDistance < 0.0 || o.spine.turningThreshold <= 0.0 || o.spine.smoothingPasses < 0 ||
+      o.spine.minBranchEdges < 0)
+    throw invalidOption(
+        "spine trim distance, turning threshold, smoothing passes and branch length must be positive.");
+  const RegularSubdivisionOptions& r = o.regular;
+  if (r.minAreaFraction < 0.0 || r.minFrontage < 0.0 || r.aspectThreshold < 0.0 || r.aspectThreshold > 1.0 ||
+      r.minChildShare < 0.0 || r.minChildShare > 0.5 || r.residentialShare < 0.0 || r.residentialShare > 1.0)
+    throw invalidOption(
+        "subdivision constraints are out of range (shares within [0, 1], child share at most 0.5).");
+  if (r.positionSigma <= 0.0 || r.simplifyTolerance < 0.0 || r.maxLargestAttempts < 0 || r.maxAttempts < 1 ||
+      r.frontageTolerance <= 0.0)
+    throw invalidOption("subdivision sampling options must be positive.");
+  if (o.undeveloped.multiplier < 1.0) throw invalidOption("the undeveloped multiplier must be at least 1.");
+}
+
+BlockParcels parcelBlock(const ParcelBlock& block, const ParcelsOptions& options, const geos::Context& geos) {
+  if (block.polygon.outer.size() < 4 || !(area(block.polygon) > 0.0))
+    throw invalidInput("block " + std::to_string(block.blockId) +
+                       " has an empty or degenerate polygon (fewer than 3 distinct vertices or no area).");
+  BlockParcels out;
+  BlockReport& report = out.report;
+  report.blockId = block.blockId;
+  const SimBlockSummary& sim = block.sim;
+  const int simCount = static_cast<int>(sim.parcels.size());
+  report.simParcels = simCount;
+  for (const SimParcel& p : sim.parcels) report.simPopulation += p.population;
+  Rng rng(deriveSeed(options.seed, static_cast<std::uint64_t>(block.blockId)));
+  const double blockArea = area(block.polygon);
+  const double diagonal = block.obbDiagonal > 0.0 ? block.obbDiagonal : orientedBox(block.polygon).diagonal();
+
+  // D6
+  SpineGraph spine;
+  if (needsSpine(block, options.spine)) spine = buildSpine(block.polygon, options.spine, geos);
+  out.spine = spineBranches(spine);
+  report.hasSpine = !spine.edges.empty();
+
+  // Q13: a vector block without simulated parcels is one undeveloped parcel.
+  if (simCount == 0) {
+    VectorParcel only;
+    only.polygon = block.polygon;
+    only.undeveloped = true;
+    only.area = blockArea;
+    out.parcels.push_back(only);
+    report.targetParcels = report.parcels = 1;
+    report.ignoredPopulation = report.simPopulation;
+    return out;
+  }
+
+  // E1 is deterministic: compute once, start every try from it.
+  double smallestSim = 0.0;
+  for (const SimParcel& p : sim.parcels)
+    if (smallestSim == 0.0 || p.cells < smallestSim) smallestSim = p.cells;
+  const SpineParcels spineParcels =
+      spineSubdivision(block.polygon, spine, simCount, smallestSim, options.spineSubdivision, geos);
+  report.spineDiscarded = report.hasSpine && !spineParcels.used;
+  MultiPolygon initial = spineParcels.used ? spineParcels.parcels : MultiPolygon{block.polygon};
+
+  const RoadFrontage frontage(geos, block.roadFacing, options.regular.frontageTolerance);
+  SplitRules rules = splitRules(sim, options.regular);
+  if (options.regular.scaleMinAreaToBlock) {
+    double simParcelArea = 0.0;
+    for (const SimParcel& p : sim.parcels) simParcelArea += p.cells;
+    if (simParcelArea > blockArea && simParcelArea > 0.0) rules.minArea *= blockArea / simParcelArea;
+  }
+  const UseModel model = buildUseModel(sim, options.landUse);
+  // Every try starts from the E1 parcels: simplify them and find their road-facing edges once, not
+  // once per try.
+  std::vector<SubdivisionParcel> initialParcels;
+  for (const Polygon& p : initial) {
+    initialParcels.emplace_back(p);
+    prepare(initialParcels.back(), options.regular, frontage, geos);
+  }
+
+  struct Best {
+    bool set = false;
+    int missing = 0;
+    double cost = 0.0;
+    Cost parts;
+    int target = 0;
+    std::vector<SubdivisionParcel> parcels;
+    std::vector<UseChoice> uses;
+    std::string shortfall;
+    int relaxed = 0;
+  } best;
+
+  auto runTries = [&](const SplitRules& rules, int tries, int relaxed) {
+    for (int attempt = 0; attempt < tries; ++attempt) {
+      std::vector<SubdivisionParcel> parcels = initialParcels;
+      SplitStats stats;
+      int target = std::max(simCount, static_cast<int>(parcels.size()));
+      subdivide(parcels, target, rules, options.regular, frontage, geos, rng, stats);  // E2
+      std::vector<UseParcel> described = useParcels(parcels);
+      std::vector<UseChoice> uses = assignLandUse(described, blockArea, model, options.landUse, rng);  // E4
+      const int extra = undevelopedExtraParcels(sim, countUndeveloped(uses), options.undeveloped);     // E3
+      if (extra > 0) {
+        target += extra;
+        subdivide(parcels, target, rules, options.regular, frontage, geos, rng, stats);
+        described = useParcels(parcels);
+        uses = assignLandUse(described, blockArea, model, options.landUse, rng);
+      }
+      const Cost cost =
+          scoreParcels(described, uses, blockArea, diagonal, model, sim, options.scoring);  // E5
+      const int missing = std::max(0, target - static_cast<int>(parcels.size()));
+      ++report.tries;
+      report.splitAttempts += stats.accepted;
+      for (int r : stats.rejected) report.splitAttempts += r;
+      report.shortTries += missing > 0;
+      // [INFERENCE] a complete subdivision beats any short one; among equals the lower cost wins.
+      // A relaxed round only replaces the result of an earlier round by making more parcels.
+      if (!best.set || missing < best.missing ||
+          (missing == best.missing && relaxed == best.relaxed && cost.total() < best.cost)) {
+        best.set = true;
+        best.missing = missing;
+        best.cost = cost.total();
+        best.parts = cost;
+        best.target = target;
+        best.parcels = std::move(parcels);
+        best.uses = std::move(uses);
+        best.shortfall =
+            missing > 0 ? (rules.minFrontage > 0.0 && frontage.empty() ? "block has no road-facing boundary"
+                                                                       : stats.shortfallReason())
+                        : std::string();
+        best.relaxed = relaxed;
+      }
+    }
+  };
+  runTries(rules, options.tries, 0);
+  SplitRules relaxedRules = rules;
+  for (int round = 1; round <= options.relaxationRounds && best.missing > 0; ++round) {
+    relaxedRules.minArea *= 0.5;
+    relaxedRules.aspectThreshold *= 0.5;
+    runTries(relaxedRules, options.relaxedTries, round);
+  }
+
+  // E6 on the kept result.
+  const std::vector<UseParcel> described = useParcels(best.parcels);
+  const PopulationResult population = assignPopulation(described, best.uses, sim);
+  for (size_t k = 0; k < best.parcels.size(); ++k) {
+    VectorParcel p;
+    p.polygon = std::move(best.parcels[k].polygon);
+    p.undeveloped = best.uses[k].undeveloped;
+    p.use = best.uses[k].use;
+    p.population = population.population[k];
+    p.area = described[k].area;
+    out.parcels.push_back(std::move(p));
+  }
+  report.targetParcels = best.target;
+  report.parcels = static_cast<int>(out.parcels.size());
+  report.cost = best.cost;
+  report.costUse = best.parts.use;
+  report.costDistance = best.parts.distance;
+  report.costSize = best.parts.size;
+  report.shortfall = best.shortfall;
+  report.relaxedRules = best.relaxed;
+  report.ignoredPopulation = population.ignoredPopulation;
+  report.ignoredUses = population.ignoredUses;
+  return out;
+}
+
+ParcelsResult vectorizeParcels(const std::vector<ParcelBlock>& blocks, const ParcelsOptions& options,
+                               const Progress& progress) {
+  validateParcelsOptions(options);
+  ParcelsResult result;
+  result.blocks.resize(blocks.size());
+  reportProgress(progress, 0.0, "parcels");
+  const size_t n = blocks.size();
+  if (n == 0) {
+    reportProgress(progress, 1.0, "parcels");
+    return result;
+  }
+  size_t threads = options.threads > 0 ? static_cast<size_t>(options.threads)
+                                       : std::max<size_t>(1, std::thread::hardware_concurrency());
+  threads = std::min(threads, n);
+
+  std::atomic<size_t> next{0};
+  std::atomic<bool> stop{false};
+  std::mutex mutex;
+  std::condition_variable wake;
+  size_t done = 0;
+  std::exception_ptr failure;
+  size_t failureIndex = std::numeric_limits<size_t>::max();
+
+  auto worker = [&]() {
+    geos::Context geos;  // one GEOS context per worker thread
+    while (!stop) {
+      const size_t i = next++;
+      if (i >= n) break;
+      try {
+        result.blocks[i] = parcelBlock(blocks[i], options, geos);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (i < failureIndex) {  // the lowest failing block, whatever the scheduling
+          failureIndex = i;
+          failure = std::current_exception();
+        }
+        stop = true;
+      }
+      std::lock_guard<std::mutex> lock(mutex);
+      ++done;
+      wake.notify_one();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (size_t t = 0; t < threads; ++t) pool.emplace_back(worker);
+
+  std::exception_ptr cancelled;
+  {
+    std::unique_lock<std::mutex> lock(mutex);
+    while (done < n && !stop) {
+      wake.wait_for(lock, std::chrono::milliseconds(100));
+      const double fraction = static_cast<double>(done) / static_cast<double>(n);
+      lock.unlock();
+      try {
+        reportProgress(progress, fraction, "parcels");
+      } catch (...) {
+        cancelled = std::current_exception();
+        stop = true;
+      }
+      lock.lock();
+    }
+  }
+  for (std::thread& t : pool) t.join();
+  if (cancelled) std::rethrow_exception(cancelled);
+  if (failure) std::rethrow_exception(failure);
+  reportProgress(progress, 1.0, "parcels");
+  return result;
+}
+
+TilingCheck checkTiling(const Polygon& block, const std::vector<VectorParcel>& parcels,
+                        const geos::Context& geos) {
+  TilingCheck check;
+  GEOSContextHandle_t h = geos.handle();
+  check.blockArea = area(block);
+  MultiPolygon all;
+  for (const VectorParcel& p : parcels) {
+    check.parcelArea += area(p.polygon);
+    geos::GeomPtr g = geos.polygon(p.polygon);
+    if (GEOSisValid_r(h, g.get()) != 1) ++check.invalidParcels;
+    all.push_back(p.polygon);
+  }
+  geos::GeomPtr blockGeom = geos.polygon(block);
+  geos::GeomPtr collection = geos.multiPolygon(all);
+  geos::GeomPtr merged = geos.own(GEOSUnaryUnion_r(h, collection.get()), "union");
+  double unionArea = 0.0;
+  GEOSArea_r(h, merged.get(), &unionArea);
+  check.overlapArea = std::max(0.0, check.parcelArea - unionArea);
+  geos::GeomPtr gap = geos.own(GEOSDifference_r(h, blockGeom.get(), merged.get()), "difference");
+  geos::GeomPtr outside = geos.own(GEOSDifference_r(h, merged.get(), blockGeom.get()), "difference");
+  GEOSArea_r(h, gap.get(), &check.gapArea);
+  GEOSArea_r(h, outside.get(), &check.outsideArea);
+  return check;
+}
+
+double useShareDistance(const SimBlockSummary& sim, const std::vector<VectorParcel>& parcels,
+                        double undevelopedSwitch) {
+  // Index 0..8 by LandUse, index 9 for undeveloped.
+  double simShare[10] = {}, vecShare[10] = {};
+  double simTotal = 0.0, vecTotal = 0.0;
+  const std::array<double, kLandUseClassCount> areas = simulatedUseAreas(sim);
+  for (int use = 0; use < kLandUseClassCount; ++use)
+    if (isDeveloped(static_cast<LandUse>(use))) {
+      simShare[use] = areas[static_cast<size_t>(use)];
+      simTotal += simShare[use];
+    }
+  if (sim.area > 0.0 && sim.undevelopedArea / sim.area >= undevelopedSwitch) {
+    simShare[9] = sim.undevelopedArea;
+    simTotal += sim.undevelopedArea;
+  }
+  for (const VectorParcel& p : parcels) {
+    vecShare[p.undeveloped ? 9 : static_cast<int>(p.use)] += p.area;
+    vecTotal += p.area;
+  }
+  double l1 = 0.0;
+  for (int i = 0; i < 10; ++i)
+    l1 += std::fabs((simTotal > 0.0 ? simShare[i] / simTotal : 0.0) -
+                    (vecTotal > 0.0 ? vecShare[i] / vecTotal : 0.0));
+  return l1;
+}
+
+ParcelsQuality assessParcels(const std::vector<ParcelBlock>& blocks, const ParcelsResult& result,
+                             const ParcelsOptions& options) {
+  ParcelsQuality q;
+  geos::Context geos;
+  int withSim = 0;
+  for (size_t b = 0; b < blocks.size() && b < result.blocks.size(); ++b) {
+    const ParcelBlock& block = blocks[b];
+    const BlockParcels& out = result.blocks[b];
+    ++q.blocks;
+    q.parcels += static_cast<int>(out.parcels.size());
+    const TilingCheck t = checkTiling(block.polygon, out.parcels, geos);
+    q.invalidParcels += t.invalidParcels;
+    if (t.blockArea > 0.0) {
+      q.worstGapRatio = std::max(q.worstGapRatio, t.gapArea / t.blockArea);
+      q.worstOverlapRatio = std::max(q.worstOverlapRatio, (t.overlapArea + t.outsideArea) / t.blockArea);
+    }
+    const RoadFrontage frontage(geos, block.roadFacing, options.regular.frontageTolerance);
+    for (const VectorParcel& p : out.parcels) {
+      if (p.undeveloped) continue;
+      ++q.developedParcels;
+      if (frontage.longestGeos(p.polygon) < options.regular.minFrontage) ++q.developedWithoutFrontage;
+    }
+    if (out.report.parcels < out.report.targetParcels) ++q.shortfallBlocks;
+    if (!block.sim.parcels.empty()) {
+      q.meanUseShareDistance += useShareDistance(block.sim, out.parcels, options.landUse.undevelopedSwitch);
+      ++withSim;
+    }
+    q.simPopulation += out.report.simPopulation;
+    q.ignoredPopulation += out.report.ignoredPopulation;
+    q.ignoredUses += out.report.ignoredUses;
+    for (const VectorParcel& p : out.parcels) q.outputPopulation += p.population;
+  }
+  if (withSim > 0) q.meanUseShareDistance /= withSim;
+  return q;
+}
+
+}  // namespace urbanvec::vectorize::parcels

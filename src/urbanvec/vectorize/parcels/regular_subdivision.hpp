@@ -1,0 +1,158 @@
+// Stage E2 of the vectorizer: regular subdivision (spec §3 E2, §9.4 Q16-Q20; thesis §3.4.3 "Regular
+// Subdivision", paper §3.4.1): split the largest parcel perpendicular to a random road-facing edge of
+// its simplified copy, at a normally distributed position, transfer the cut to the original, and keep
+// it only when the four constraints hold.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "urbanvec/core/geometry.hpp"
+#include "urbanvec/core/geos.hpp"
+#include "urbanvec/core/random.hpp"
+#include "urbanvec/vectorize/parcels/parcel_input.hpp"
+
+namespace urbanvec::vectorize::parcels {
+
+struct RegularSubdivisionOptions {
+  /// Constraint 1: each new parcel is at least this share of the smallest simulated parcel (spec
+  /// §5.4: 75%), unitless.
+  double minAreaFraction = 0.75;
+  /// [INFERENCE] Constraint 1 shrinks with the vector block when the block is smaller than the
+  /// simulated parcels it must hold (an external block the perimeter cut, a block the pavement
+  /// narrowed): the threshold is multiplied by min(1, block area / their total area).
+  bool scaleMinAreaToBlock = true;
+  /// Constraint 2: longest contiguous road frontage of each new parcel (spec §5.4: 0.5 pw), cells.
+  double minFrontage = 0.5;
+  /// Constraint 3: aspect-ratio threshold (spec §5.4: 0.25), unitless.
+  double aspectThreshold = 0.25;
+  /// Constraint 3, Q16 flag: compare the children with the parent's aspect instead of the threshold.
+  bool compareParentAspect = false;
+  /// Constraint 4 applies when residential parcels fill at least this share of the simulated block
+  /// (spec §5.4: 70%), unitless.
+  double residentialShare = 0.70;
+  /// Constraint 4: each child keeps at least this share of its parent's area (spec §5.4: 30%).
+  double minChildShare = 0.30;
+  /// Tolerance of the simplified copy whose road-facing edges orient the cuts [INFERENCE, §6: 0.5 pw
+  /// since block edges are "roughly 1 pw or less"], cells.
+  double simplifyTolerance = 0.5;
+  /// σ of the cut position along the chosen edge, as a share of its length; resampled into (0, 1)
+  /// [INFERENCE, §6: 1/6].
+  double positionSigma = 1.0 / 6.0;
+  /// Attempts on the largest parcel before trying random parcels [INFERENCE, §6: 20].
+  int maxLargestAttempts = 20;
+  /// Attempts in all for one new parcel [INFERENCE, §6: 200].
+  int maxAttempts = 200;
+  /// Choose the road-facing edge with probability proportional to its length (Q17 flag); the default
+  /// is uniform over edges.
+  bool lengthWeightedEdges = false;
+  /// A parcel edge counts as road-facing when it lies within this distance of the block's road-facing
+  /// lines [INFERENCE: absorbs rounding of the part-2 adapter], cells.
+  double frontageTolerance = 1e-4;
+};
+
+/// Road access of parcels: the block's road-facing lines (spec Q17) and the band around them.
+/// longest() and within() reuse scratch buffers, so one object serves one thread (each block builds
+/// its own).
+class RoadFrontage {
+ public:
+  RoadFrontage(const geos::Context& geos, const MultiLineString& roadFacing, double tolerance);
+  /// Longest contiguous length of the parcel boundary lying on road-facing lines (spec E2 constraint
+  /// 2), cells: collinear overlaps of ring edges with road-facing segments, chained along the ring.
+  /// This is the fast form used inside the split loop.
+  double longest(const Polygon& parcel) const;
+  /// The same measure with GEOS (Intersection with a tolerance band + LineMerge), for the checkers.
+  double longestGeos(const Polygon& parcel) const;
+  /// Whether a road-facing line lies within `limit` (cells) of the point; skips segments whose bounding
+  /// box is farther than the limit, so it costs a distance only for the few segments near the point.
+  bool within(const Vec2& p, double limit) const;
+  bool empty() const { return segments_.empty(); }
+
+ private:
+  double longestOnRing(const Ring& ring) const;
+  /// Collects into candidates_ each segment registered in a grid cell that the edge a-b, widened by
+  /// `margin`, passes through; a segment appears once.
+  void segmentsAlong(const Vec2& a, const Vec2& b, double margin) const;
+  void buildGrid();
+  const geos::Context& geos_;
+  double tolerance_;
+  geos::GeomPtr band_;
+  std::vector<std::array<Vec2, 2>> segments_;
+  // Uniform bucket grid over the segments' bounding boxes (cell lists stored contiguously), so a
+  // query visits only the segments near a parcel edge instead of all the block's curb segments.
+  Vec2 gridOrigin_;
+  double cellSize_ = 1.0;
+  int columns_ = 0, rows_ = 0;
+  std::vector<std::uint32_t> cellStart_;     ///< columns_ * rows_ + 1 offsets into cellSegments_
+  std::vector<std::uint32_t> cellSegments_;  ///< segment indices, grouped by cell
+  // Scratch reused across calls.
+  mutable std::vector<std::uint32_t> candidates_;
+  mutable std::vector<std::uint32_t> lastSeen_;  ///< per segment, the query that last collected it
+  mutable std::uint32_t query_ = 0;
+  mutable std::vector<std::pair<double, double>> edgeCover_;
+  mutable std::vector<std::pair<double, double>> cover_;  ///< merged intervals of all edges of a ring
+  mutable std::vector<std::uint32_t> coverStart_;         ///< per edge, its first interval in cover_
+  mutable std::vector<double> edgeLength_;
+};
+
+/// The four constraints, with the block's numbers filled in.
+struct SplitRules {
+  double minArea = 0.0;      ///< cells²
+  double minFrontage = 0.5;  ///< cells
+  double aspectThreshold = 0.25;
+  bool compareParentAspect = false;
+  bool residentialRule = false;  ///< constraint 4 active for this block
+  double minChildShare = 0.30;
+};
+SplitRules splitRules(const SimBlockSummary& sim, const RegularSubdivisionOptions& options);
+
+enum class SplitVerdict { Accepted, TooSmall, NoRoadAccess, TooRectangular, UnequalResidential, BadGeometry };
+std::string_view verdictName(SplitVerdict verdict);
+
+/// Checks a split of `parent` into `a` and `b` against the four constraints (size, rectangularity,
+/// residential variation, then road access, the costliest, last).
+SplitVerdict checkSplit(const Polygon& parent, const Polygon& a, const Polygon& b, const SplitRules& rules,
+                        const RoadFrontage& frontage);
+/// The same with the parent's area and PCA aspect already known (the split loop keeps them per parcel
+/// instead of recomputing them on every try).
+SplitVerdict checkSplit(double parentArea, double parentAspect, const Polygon& a, const Polygon& b,
+                        const SplitRules& rules, const RoadFrontage& frontage);
+
+/// A parcel during subdivision, with its simplified copy and road-facing edges computed on first use.
+struct SubdivisionParcel {
+  Polygon polygon;
+  double area = 0.0;
+  bool prepared = false;
+  double aspect = 1.0;                         ///< PCA aspect of `polygon`, set by prepare()
+  std::vector<std::array<Vec2, 2>> roadEdges;  ///< road-facing edges of the simplified copy
+  explicit SubdivisionParcel(Polygon p);
+};
+
+/// Counts of rejected attempts by reason, to explain shortfalls.
+struct SplitStats {
+  int accepted = 0;
+  int rejected[6] = {0, 0, 0, 0, 0, 0};  ///< indexed by SplitVerdict
+  /// "no acceptable split (mostly <reason>)"
+  std::string shortfallReason() const;
+};
+
+/// Computes the aspect and the simplified copy's road-facing edges of `parcel` (trySplit does it on
+/// first use).
+/// Deterministic and free of randomness, so the tries of a block can share the work on its E1 parcels.
+void prepare(SubdivisionParcel& parcel, const RegularSubdivisionOptions& options,
+             const RoadFrontage& frontage, const geos::Context& geos);
+
+/// One random split attempt of `parcel`; on acceptance the two children are returned in `out`.
+SplitVerdict trySplit(SubdivisionParcel& parcel, const SplitRules& rules,
+                      const RegularSubdivisionOptions& options, const RoadFrontage& frontage,
+                      const geos::Context& geos, Rng& rng, std::array<Polygon, 2>& out);
+
+/// Splits (largest first, then random parcels) until `target` parcels exist or no acceptable split is
+/// found; returns whether the target was reached.
+bool subdivide(std::vector<SubdivisionParcel>& parcels, int target, const SplitRules& rules,
+               const RegularSubdivisionOptions& options, const RoadFrontage& frontage,
+               const geos::Context& geos, Rng& rng, SplitStats& stats);
+
+}  // namespace urbanvec::vectorize::parcels

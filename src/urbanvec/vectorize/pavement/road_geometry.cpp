@@ -1,0 +1,533 @@
+// Stage C, "Road geometry creation" (shared/specs/sexton-vectorizer.md §3 C, §5.2, §6, §11.3).
+#include "urbanvec/vectorize/pavement/road_geometry.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <exception>
+#include <limits>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "urbanvec/core/error.hpp"
+#include "urbanvec/vectorize/blocks/block_outline.hpp"
+
+namespace urbanvec::vectorize {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+/// Points closer than this (cells) are one point: duplicate nodes carry no direction.
+constexpr double kSamePoint = 1e-9;
+
+Vec2 unit(const Vec2& v) {
+  const double len = length(v);
+  return len > 0.0 ? v / len : Vec2{0.0, 0.0};
+}
+Vec2 leftNormal(const Vec2& d) {
+  return {-d.y, d.x};
+}
+Vec2 rightNormal(const Vec2& d) {
+  return {d.y, -d.x};
+}
+
+/// Azimuth clockwise from due north in [0, 2*pi) (spec §0).
+double azimuthOf(const Vec2& d) {
+  double a = std::atan2(d.x, d.y);
+  if (a < 0.0) a += 2.0 * kPi;
+  return a;
+}
+
+LineString withoutRepeats(const LineString& line) {
+  LineString out;
+  for (const Vec2& p : line)
+    if (out.empty() || distance(out.back(), p) > kSamePoint) out.push_back(p);
+  return out;
+}
+
+double halfWidthOf(RoadClass c, const RoadGeometryOptions& o) {
+  return c == RoadClass::Primary ? o.primaryHalfWidth : o.secondaryHalfWidth;
+}
+
+geos::GeomPtr convexHullOf(const geos::Context& ctx, const std::vector<Vec2>& points) {
+  std::vector<geos::GeomPtr> parts;
+  for (const Vec2& p : points) parts.push_back(ctx.point(p));
+  geos::GeomPtr multi = ctx.collection(GEOS_MULTIPOINT, std::move(parts));
+  return ctx.own(GEOSConvexHull_r(ctx.handle(), multi.get()), "convex hull");
+}
+
+/// The offset of a polyline vertex on one side (`side` = +1 left, -1 right): the miter point of the
+/// offset lines of the two incident links, clamped to `clamp` x w, or the plain normal offset at ends.
+Vec2 curbVertex(const LineString& line, size_t i, double w, double side, double clamp) {
+  const size_t n = line.size();
+  if (i == 0) return line[0] + leftNormal(unit(line[1] - line[0])) * (side * w);
+  if (i + 1 == n) return line[i] + leftNormal(unit(line[i] - line[i - 1])) * (side * w);
+  const Vec2 n0 = leftNormal(unit(line[i] - line[i - 1]));
+  const Vec2 n1 = leftNormal(unit(line[i + 1] - line[i]));
+  const Vec2 sum = n0 + n1;
+  const double sumLength = length(sum);
+  // Nearly reversing links have no finite miter: offset along the incoming normal instead.
+  if (sumLength < 1e-9) return line[i] + n0 * (side * w);
+  const double miter = std::min(2.0 * w / sumLength, clamp * w);
+  return line[i] + sum / sumLength * (side * miter);
+}
+
+/// The pavement of one segment: the area between its two curbs, i.e. the triangle strip of the curb
+/// vertices (miter points at the nodes, flat ends at the segment's end nodes). GEOS's flat-capped
+/// mitre buffer of the centreline is exactly that strip where it is simple, and stays a valid polygon
+/// where a raw strip would fold over itself (sharp turns, links shorter than the width); the mitre
+/// limit is the miter clamp.
+geos::GeomPtr segmentPavement(const geos::Context& ctx, const LineString& line, double w, double clamp) {
+  geos::GeomPtr centreline = ctx.lineString(line);
+  return ctx.own(GEOSBufferWithStyle_r(ctx.handle(), centreline.get(), w, 8, GEOSBUF_CAP_FLAT,
+                                       GEOSBUF_JOIN_MITRE, clamp),
+                 "segment buffer");
+}
+
+/// Octagon centred on `centre` with circumradius r and one edge perpendicular to `towardEnd`
+/// (the direction of the incoming link), counter-clockwise.
+Polygon octagon(const Vec2& centre, const Vec2& towardEnd, double r) {
+  const double base = std::atan2(towardEnd.y, towardEnd.x);
+  Polygon p;
+  for (int k = 0; k < 8; ++k) {
+    const double a = base + kPi / 8.0 + k * kPi / 4.0;
+    p.outer.push_back(centre + Vec2{std::cos(a), std::sin(a)} * r);
+  }
+  p.outer.push_back(p.outer.front());
+  return p;
+}
+
+/// One road leaving a node: the direction of the segment's first link seen from the node.
+struct Arm {
+  int segment = 0;
+  int end = 0;  // 0 = the segment starts here, 1 = it ends here
+  Vec2 dir;
+  double halfWidth = 0.5;
+  double azimuth = 0.0;
+  RoadClass roadClass = RoadClass::Secondary;
+  double firstLinkLength = 0.0;
+};
+
+/// The curb return in the block wedge at `corner` between the rays along dirA and dirB (wedge angle
+/// `wedge` < pi): the region between the two curbs and the arc tangent to both, as a polygon; empty
+/// when too small to matter. The tangent distance is capped at `maxTangent`.
+Polygon curbReturn(const Vec2& corner, const Vec2& dirA, const Vec2& dirB, double wedge, double radius,
+                   double maxTangent, int segments) {
+  Polygon out;
+  if (!(radius > 0.0) || !(wedge > 1e-3) || !(wedge < kPi - 1e-3) || segments < 1) return out;
+  const double half = wedge / 2.0;
+  double tangent = radius / std::tan(half);
+  if (tangent > maxTangent) {
+    tangent = maxTangent;
+    radius = tangent * std::tan(half);
+  }
+  if (tangent < 1e-3) return out;
+  const Vec2 bisector = unit(dirA + dirB);
+  const Vec2 centre = corner + bisector * (radius / std::sin(half));
+  const Vec2 ta = corner + dirA * tangent;
+  const Vec2 fromCentre = ta - centre;
+  const Vec2 tb = corner + dirB * tangent;
+  const double sweep = (kPi - wedge) * (cross(fromCentre, tb - centre) >= 0.0 ? 1.0 : -1.0);
+  out.outer.push_back(corner);
+  for (int k = 0; k <= segments; ++k) {
+    const double a = sweep * k / segments;
+    const Vec2 r{fromCentre.x * std::cos(a) - fromCentre.y * std::sin(a),
+                 fromCentre.x * std::sin(a) + fromCentre.y * std::cos(a)};
+    out.outer.push_back(k == segments ? tb : centre + r);
+  }
+  out.outer.push_back(corner);
+  return out;
+}
+
+struct RawPiece {
+  geos::GeomPtr geom;
+  PavementKind kind;
+  RoadClass roadClass;
+  int segment;
+  int node;
+};
+
+/// Rounds every vertex to the precision grid; only a polygon that rounding made invalid pays for a
+/// snap-rounding overlay.
+geos::GeomPtr snapToGrid(const geos::Context& ctx, const GEOSGeometry* g, double grid) {
+  MultiPolygon parts = ctx.toPolygons(g);
+  auto round = [grid](Ring& ring) {
+    for (Vec2& p : ring) p = {std::round(p.x / grid) * grid, std::round(p.y / grid) * grid};
+  };
+  for (Polygon& p : parts) {
+    round(p.outer);
+    for (Ring& h : p.holes) round(h);
+  }
+  geos::GeomPtr rounded = parts.size() == 1 ? ctx.polygon(parts.front()) : ctx.multiPolygon(parts);
+  if (GEOSisValid_r(ctx.handle(), rounded.get()) == 1) return rounded;
+  return ctx.own(GEOSGeom_setPrecision_r(ctx.handle(), g, grid, 0), "set precision");
+}
+
+bool isConvexPolygon(const std::vector<Vec2>& pts) {
+  // Strict convexity of the closed sequence, ignoring repeated points; clockwise expected.
+  std::vector<Vec2> p;
+  for (const Vec2& v : pts)
+    if (p.empty() || distance(p.back(), v) > kSamePoint) p.push_back(v);
+  while (p.size() > 1 && distance(p.front(), p.back()) <= kSamePoint) p.pop_back();
+  if (p.size() < 3) return true;
+  int sign = 0;
+  for (size_t i = 0; i < p.size(); ++i) {
+    const Vec2& a = p[i];
+    const Vec2& b = p[(i + 1) % p.size()];
+    const Vec2& c = p[(i + 2) % p.size()];
+    const double t = cross(b - a, c - b);
+    if (std::fabs(t) < 1e-12) continue;
+    const int s = t > 0 ? 1 : -1;
+    if (sign == 0) sign = s;
+    if (s != sign) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::string_view pavementKindName(PavementKind kind) {
+  switch (kind) {
+    case PavementKind::Segment:
+      return "segment";
+    case PavementKind::Intersection:
+      return "intersection";
+    case PavementKind::CulDeSac:
+      return "cul_de_sac";
+  }
+  return "segment";
+}
+
+std::string_view roadClassName(RoadClass roadClass) {
+  switch (roadClass) {
+    case RoadClass::Primary:
+      return "primary";
+    case RoadClass::Secondary:
+      return "secondary";
+    case RoadClass::Perimeter:
+      return "perimeter";
+  }
+  return "secondary";
+}
+
+bool curbCorner(const Vec2& origin, const Vec2& dirA, double halfWidthA, const Vec2& dirB, double halfWidthB,
+                double parallelSinEpsilon, Vec2& corner) {
+  const double sine = cross(dirA, dirB);
+  if (std::fabs(sine) < parallelSinEpsilon) return false;
+  // origin + wA*rightA + t*dirA = origin + wB*leftB + s*dirB, solved for t.
+  const Vec2 pa = rightNormal(dirA) * halfWidthA;
+  const Vec2 pb = leftNormal(dirB) * halfWidthB;
+  const double t = cross(pb - pa, dirB) / cross(dirA, dirB);
+  corner = origin + pa + dirA * t;
+  return true;
+}
+
+GeometryIndex::GeometryIndex(const geos::Context& context, const std::vector<const GEOSGeometry*>& geometries)
+    : context_(context), ids_(geometries.size()) {
+  tree_ = GEOSSTRtree_create_r(context_.handle(), 10);
+  if (!tree_) throw internalError("GEOS failed to create an STRtree: " + context_.lastError());
+  for (size_t i = 0; i < geometries.size(); ++i) {
+    ids_[i] = static_cast<int>(i);
+    if (geometries[i] && !GEOSisEmpty_r(context_.handle(), geometries[i]))
+      GEOSSTRtree_insert_r(context_.handle(), tree_, geometries[i], &ids_[i]);
+  }
+}
+
+GeometryIndex::~GeometryIndex() {
+  if (tree_) GEOSSTRtree_destroy_r(context_.handle(), tree_);
+}
+
+std::vector<int> GeometryIndex::query(const GEOSGeometry* g) const {
+  std::vector<int> hits;
+  if (!g || GEOSisEmpty_r(context_.handle(), g)) return hits;
+  GEOSSTRtree_query_r(
+      context_.handle(), tree_, g,
+      [](void* item, void* userdata) {
+        static_cast<std::vector<int>*>(userdata)->push_back(*static_cast<const int*>(item));
+      },
+      &hits);
+  std::sort(hits.begin(), hits.end());
+  return hits;
+}
+
+GeosWorkers::GeosWorkers(int threads) {
+  const size_t n =
+      threads > 0 ? static_cast<size_t>(threads) : std::max<size_t>(1, std::thread::hardware_concurrency());
+  for (size_t i = 0; i < n; ++i) contexts_.push_back(std::make_unique<geos::Context>());
+}
+
+void GeosWorkers::run(size_t n, const std::function<void(size_t, size_t, const geos::Context&)>& body,
+                      const std::function<void(size_t)>& tick) const {
+  std::atomic<size_t> next{0};
+  std::atomic<size_t> finished{0};
+  std::atomic<bool> stop{false};
+  std::mutex mutex;
+  std::exception_ptr failure;
+  std::exception_ptr cancelled;
+  size_t failureIndex = std::numeric_limits<size_t>::max();
+  size_t reported = 0;
+  auto work = [&](size_t worker, bool caller) {
+    const geos::Context& context = *contexts_[worker];
+    while (!stop) {
+      const size_t i = next++;
+      if (i >= n) break;
+      try {
+        body(i, worker, context);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (i < failureIndex) {  // the lowest failing item, whatever the scheduling
+          failureIndex = i;
+          failure = std::current_exception();
+        }
+        stop = true;
+      }
+      ++finished;
+      if (caller && tick && !stop) {
+        const size_t now = finished;
+        try {
+          tick(now - reported);
+        } catch (...) {
+          std::lock_guard<std::mutex> lock(mutex);
+          cancelled = std::current_exception();
+          stop = true;
+        }
+        reported = now;
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  const size_t threads = std::min(contexts_.size(), n);
+  try {
+    for (size_t t = 1; t < threads; ++t) pool.emplace_back(work, t, false);
+  } catch (...) {
+    stop = true;
+    for (std::thread& t : pool) t.join();
+    throw;
+  }
+  if (n > 0) work(0, true);
+  for (std::thread& t : pool) t.join();
+  if (cancelled) std::rethrow_exception(cancelled);
+  if (failure) std::rethrow_exception(failure);
+  if (tick && finished > reported) tick(finished - reported);
+}
+
+geos::GeomPtr unionOnGrid(const geos::Context& context, std::vector<geos::GeomPtr> parts, double grid) {
+  geos::GeomPtr all = context.collection(GEOS_GEOMETRYCOLLECTION, std::move(parts));
+  return context.own(GEOSUnaryUnionPrec_r(context.handle(), all.get(), grid), "unary union");
+}
+
+double geosArea(const geos::Context& context, const GEOSGeometry* g) {
+  double a = 0.0;
+  if (!g || GEOSisEmpty_r(context.handle(), g)) return 0.0;
+  if (!GEOSArea_r(context.handle(), g, &a)) throw internalError("GEOS failed to compute an area");
+  return a;
+}
+
+RoadGeometry buildRoadGeometry(const RoadNetwork& network, const RoadGeometryOptions& options,
+                               const Progress& progress) {
+  if (!(options.primaryHalfWidth > 0.0) || !(options.secondaryHalfWidth > 0.0))
+    throw invalidOption("Road half-widths must be positive (primary " +
+                        std::to_string(options.primaryHalfWidth) + ", secondary " +
+                        std::to_string(options.secondaryHalfWidth) + " cells).");
+  if (!(options.culDeSacCircumradius > 0.0))
+    throw invalidOption("The cul-de-sac circumradius must be positive, got " +
+                        std::to_string(options.culDeSacCircumradius) + " cells.");
+  if (!(options.miterClamp >= 1.0))
+    throw invalidOption("The miter clamp must be at least 1, got " + std::to_string(options.miterClamp) +
+                        ".");
+  if (!(options.precisionGrid > 0.0))
+    throw invalidOption("The precision grid must be positive, got " + std::to_string(options.precisionGrid) +
+                        ".");
+  if (!(options.curbReturnRadius >= 0.0) || options.curbReturnSegments < 1)
+    throw invalidOption("Curb returns need a radius of 0 or more and at least one chord, got " +
+                        std::to_string(options.curbReturnRadius) + " cells and " +
+                        std::to_string(options.curbReturnSegments) + " chords.");
+
+  const int nodeCount = static_cast<int>(network.nodes.size());
+  std::vector<LineString> lines(network.segments.size());
+  for (size_t s = 0; s < network.segments.size(); ++s) {
+    const NetworkSegment& seg = network.segments[s];
+    if (seg.points.size() < 2)
+      throw invalidInput("Road segment " + std::to_string(s) + " has fewer than two points.");
+    if (seg.fromNode < 0 || seg.fromNode >= nodeCount || seg.toNode < 0 || seg.toNode >= nodeCount)
+      throw invalidInput("Road segment " + std::to_string(s) + " references a node that does not exist (" +
+                         std::to_string(seg.fromNode) + ", " + std::to_string(seg.toNode) + " of " +
+                         std::to_string(nodeCount) + " nodes).");
+    for (const Vec2& p : seg.points)
+      if (!std::isfinite(p.x) || !std::isfinite(p.y))
+        throw invalidInput("Road segment " + std::to_string(s) + " has a non-finite coordinate.");
+    if (seg.roadClass != RoadClass::Perimeter) lines[s] = withoutRepeats(seg.points);
+  }
+
+  geos::Context ctx;
+  const GeosWorkers workers(options.threads);  // outlives `raw`, which ends up holding their geometries
+  const double grid = options.precisionGrid;
+  RoadGeometry out;
+  std::vector<RawPiece> raw;
+  const Progress build = subProgress(progress, 0.0, 0.5);
+  ProgressTicker ticker(build, "road geometry", network.segments.size() + 1);
+
+  // Arms per node, from every road segment with a direction.
+  std::vector<std::vector<Arm>> arms(network.nodes.size());
+  for (size_t s = 0; s < network.segments.size(); ++s) {
+    const LineString& line = lines[s];
+    if (line.size() < 2) continue;
+    const NetworkSegment& seg = network.segments[s];
+    const double w = halfWidthOf(seg.roadClass, options);
+    const Vec2 startDir = unit(line[1] - line[0]);
+    const Vec2 endDir = unit(line[line.size() - 2] - line.back());
+    arms[seg.fromNode].push_back({static_cast<int>(s), 0, startDir, w, azimuthOf(startDir), seg.roadClass,
+                                  distance(line[0], line[1])});
+    arms[seg.toNode].push_back({static_cast<int>(s), 1, endDir, w, azimuthOf(endDir), seg.roadClass,
+                                distance(line.back(), line[line.size() - 2])});
+  }
+
+  // Junction and cul-de-sac pieces first: they win every overlap.
+  for (size_t node = 0; node < arms.size(); ++node) {
+    std::vector<Arm>& here = arms[node];
+    if (here.empty()) continue;
+    const Vec2 at = here[0].end == 0 ? lines[here[0].segment].front() : lines[here[0].segment].back();
+    if (here.size() == 1) {
+      if (here[0].roadClass != RoadClass::Secondary) continue;  // primary dead ends keep a flat cap
+      Polygon oct = octagon(at, here[0].dir * -1.0, options.culDeSacCircumradius);
+      raw.push_back(
+          {ctx.polygon(oct), PavementKind::CulDeSac, RoadClass::Secondary, -1, static_cast<int>(node)});
+      continue;
+    }
+    std::stable_sort(here.begin(), here.end(),
+                     [](const Arm& a, const Arm& b) { return a.azimuth < b.azimuth; });
+    std::vector<Vec2> hullPoints{at};
+    std::vector<Vec2> ordered;  // the documented polygon: corners and end vertices in clockwise order
+    std::vector<Polygon> returns;
+    RoadClass cls = RoadClass::Secondary;
+    for (size_t i = 0; i < here.size(); ++i) {
+      const Arm& a = here[i];
+      const Arm& b = here[(i + 1) % here.size()];
+      if (a.roadClass == RoadClass::Primary) cls = RoadClass::Primary;
+      double gap = b.azimuth - a.azimuth;
+      if (gap < 0.0) gap += 2.0 * kPi;
+      const Vec2 endRightA = at + rightNormal(a.dir) * a.halfWidth;
+      const Vec2 endLeftB = at + leftNormal(b.dir) * b.halfWidth;
+      Vec2 corner;
+      if (!curbCorner(at, a.dir, a.halfWidth, b.dir, b.halfWidth, options.parallelSinEpsilon, corner)) {
+        // Parallel pair: an edge between the two curb end vertices instead of a corner.
+        ordered.push_back(endRightA);
+        ordered.push_back(endLeftB);
+        hullPoints.push_back(endRightA);
+        hullPoints.push_back(endLeftB);
+        continue;
+      }
+      const double limit = options.miterClamp * std::max(a.halfWidth, b.halfWidth);
+      if (distance(corner, at) > limit) {
+        // A very sharp pair: cut the corner on both curbs at the clamp distance.
+        const double ta = std::clamp(dot(corner - endRightA, a.dir), -limit, limit);
+        const double tb = std::clamp(dot(corner - endLeftB, b.dir), -limit, limit);
+        corner = endRightA + a.dir * ta;
+        const Vec2 cornerB = endLeftB + b.dir * tb;
+        ordered.push_back(corner);
+        ordered.push_back(cornerB);
+        hullPoints.push_back(corner);
+        hullPoints.push_back(cornerB);
+      } else {
+        ordered.push_back(corner);
+        hullPoints.push_back(corner);
+        if (gap < kPi) {
+          const double maxTangent = std::min({limit, a.firstLinkLength, b.firstLinkLength});
+          Polygon r = curbReturn(corner, a.dir, b.dir, gap, options.curbReturnRadius, maxTangent,
+                                 options.curbReturnSegments);
+          if (!r.outer.empty()) returns.push_back(std::move(r));
+        }
+      }
+      // A reflex gap puts the corner behind the node; the end vertices keep the hull over the
+      // wedge between the two flat segment ends.
+      if (gap > kPi) {
+        hullPoints.push_back(endRightA);
+        hullPoints.push_back(endLeftB);
+      }
+    }
+    geos::GeomPtr hull = convexHullOf(ctx, hullPoints);
+    if (GEOSGeomTypeId_r(ctx.handle(), hull.get()) != GEOS_POLYGON) continue;  // degenerate: width step only
+    if (!isConvexPolygon(ordered)) ++out.convexHullFallbacks;
+    raw.push_back({std::move(hull), PavementKind::Intersection, cls, -1, static_cast<int>(node)});
+    for (const Polygon& r : returns)
+      raw.push_back({ctx.polygon(r), PavementKind::Intersection, cls, -1, static_cast<int>(node)});
+  }
+  ticker.tick();
+
+  // Segment strips, primary before secondary.
+  std::vector<size_t> order;
+  for (size_t s = 0; s < lines.size(); ++s)
+    if (lines[s].size() >= 2) order.push_back(s);
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return (network.segments[a].roadClass == RoadClass::Primary) >
+           (network.segments[b].roadClass == RoadClass::Primary);
+  });
+  for (size_t s : order) {
+    const NetworkSegment& seg = network.segments[s];
+    const double w = halfWidthOf(seg.roadClass, options);
+    const LineString& line = lines[s];
+    raw.push_back({segmentPavement(ctx, line, w, options.miterClamp), PavementKind::Segment, seg.roadClass,
+                   static_cast<int>(s), -1});
+    for (double side : {1.0, -1.0}) {
+      LineString curb;
+      for (size_t i = 0; i < line.size(); ++i)
+        curb.push_back(curbVertex(line, i, w, side, options.miterClamp));
+      out.curbs.push_back(std::move(curb));
+    }
+    ticker.tick();
+  }
+
+  // Overlap resolution: every piece loses what higher-priority pieces already cover. Each piece only
+  // reads the snapped raw pieces, so the pieces are resolved in parallel, one result slot each.
+  const Progress resolve = subProgress(progress, 0.5, 1.0);
+  ProgressTicker resolveTicker(resolve, "road geometry overlaps", raw.size());
+  {
+    std::vector<geos::GeomPtr> snapped(raw.size());
+    workers.run(raw.size(), [&](size_t i, size_t, const geos::Context& c) {
+      snapped[i] = snapToGrid(c, raw[i].geom.get(), grid);
+    });
+    for (size_t i = 0; i < raw.size(); ++i) raw[i].geom = std::move(snapped[i]);
+  }
+  std::vector<const GEOSGeometry*> rawGeoms;
+  for (const RawPiece& piece : raw) rawGeoms.push_back(piece.geom.get());
+  std::vector<std::vector<int>> candidates(raw.size());
+  {
+    GeometryIndex index(ctx, rawGeoms);
+    for (size_t i = 0; i < raw.size(); ++i) candidates[i] = index.query(raw[i].geom.get());
+  }
+  std::vector<PavementPiece> resolved(raw.size());
+  workers.run(
+      raw.size(),
+      [&](size_t i, size_t, const geos::Context& c) {
+        std::vector<geos::GeomPtr> winners;
+        for (int j : candidates[i]) {
+          if (static_cast<size_t>(j) >= i) break;
+          if (GEOSIntersects_r(c.handle(), raw[j].geom.get(), raw[i].geom.get()) == 1)
+            winners.push_back(c.own(GEOSGeom_clone_r(c.handle(), raw[j].geom.get()), "clone"));
+        }
+        geos::GeomPtr kept;
+        if (winners.empty()) {
+          kept = c.own(GEOSGeom_clone_r(c.handle(), raw[i].geom.get()), "clone");
+        } else {
+          geos::GeomPtr cover =
+              winners.size() == 1 ? std::move(winners.front()) : unionOnGrid(c, std::move(winners), grid);
+          kept = c.own(GEOSDifferencePrec_r(c.handle(), raw[i].geom.get(), cover.get(), grid), "difference");
+        }
+        PavementPiece& piece = resolved[i];
+        piece = {{}, raw[i].kind, raw[i].roadClass, raw[i].segment, raw[i].node};
+        for (Polygon& p : c.toPolygons(kept.get())) {
+          if (!(area(p) >= grid)) continue;  // precision crumbs
+          orientClockwise(p);                // spec: clockwise polygons
+          piece.shape.push_back(std::move(p));
+        }
+      },
+      [&](size_t done) { resolveTicker.tick(done); });
+  for (PavementPiece& piece : resolved)
+    if (!piece.shape.empty()) out.pieces.push_back(std::move(piece));
+  resolveTicker.finish();
+  return out;
+}
+
+}  // namespace urbanvec::vectorize

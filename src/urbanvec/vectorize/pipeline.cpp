@@ -1,0 +1,298 @@
+// The pipeline of spec §1 top-down: A1–A5 and B1–B6 here, each timed and measured, then C–E (city_pipeline).
+#include "urbanvec/vectorize/pipeline.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <sstream>
+
+#include "urbanvec/core/error.hpp"
+#include "urbanvec/vectorize/roads/road_checks.hpp"
+#include "urbanvec/vectorize/roads/road_output.hpp"
+
+namespace urbanvec::vectorize {
+
+namespace {
+
+/// Resets the kernel's resident-memory high-water mark (Linux "clear_refs" 5); harmless elsewhere.
+void resetPeakMemory() {
+  std::ofstream f("/proc/self/clear_refs");
+  if (f) f << "5";
+}
+
+long peakMemoryKb() {
+  std::ifstream f("/proc/self/status");
+  std::string line;
+  while (std::getline(f, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::stol(line.substr(6));
+  return -1;
+}
+
+void validate(const VectorizeInput& in) {
+  const Grid<std::uint8_t>& lu = in.landUse;
+  if (lu.width <= 0 || lu.height <= 0 || lu.cells.size() != static_cast<size_t>(lu.width) * lu.height)
+    throw invalidInput("the land-use grid has no cells");
+  if (in.spec.width != lu.width || in.spec.height != lu.height)
+    throw invalidInput("the land-use grid is " + std::to_string(lu.width) + "x" + std::to_string(lu.height) +
+                       " cells but its grid description says " + std::to_string(in.spec.width) + "x" +
+                       std::to_string(in.spec.height));
+  for (size_t i = 0; i < lu.cells.size(); ++i)
+    if (lu.cells[i] >= kLandUseClassCount)
+      throw invalidInput("the land-use grid holds value " + std::to_string(lu.cells[i]) + " at column " +
+                         std::to_string(i % lu.width) + ", row " + std::to_string(i / lu.width) +
+                         ", which is not a class code 0..8");
+  if (in.density.size() != 0 && (in.density.width != lu.width || in.density.height != lu.height))
+    throw invalidInput("the density grid does not have the size of the land-use grid");
+  if (in.parcelIds.size() != 0) {
+    if (in.parcelIds.width != lu.width || in.parcelIds.height != lu.height)
+      throw invalidInput("the parcel grid does not have the size of the land-use grid");
+    for (size_t i = 0; i < in.parcelIds.cells.size(); ++i)
+      if (in.parcelIds.cells[i] < 0)
+        throw invalidInput("the parcel grid holds negative parcel id " +
+                           std::to_string(in.parcelIds.cells[i]) + " at column " +
+                           std::to_string(i % lu.width) + ", row " + std::to_string(i / lu.width) +
+                           " (ids must be >= 0, 0 = no parcel)");
+  }
+}
+
+template <class... T>
+std::string counts(const T&... parts) {
+  std::ostringstream s;
+  ((s << parts), ...);
+  return s.str();
+}
+
+/// Every person of the input reaches a parcel of the parcels layer, or the warnings say where the
+/// others went (the A5 warning already names the parcels outside every block).
+void populationWarnings(const VectorizeInput& input, VectorizeResult& result) {
+  double density = 0, densityWithoutParcel = 0;
+  std::size_t cellsWithoutParcel = 0;
+  const bool hasParcels = input.parcelIds.size() != 0;
+  for (size_t i = 0; i < input.density.cells.size(); ++i) {
+    density += input.density.cells[i];
+    if (hasParcels && input.parcelIds.cells[i] == 0 && input.density.cells[i] > 0) {
+      densityWithoutParcel += input.density.cells[i];
+      ++cellsWithoutParcel;
+    }
+  }
+  if (!hasParcels && density > 0)
+    result.warnings.push_back("the density grid holds " + peopleText(density) +
+                              ", but without a parcels grid (-parcels) there are no input parcels to "
+                              "carry them: " +
+                              (result.city.blocks.blockInfo.empty()
+                                   ? "the parcels layer is empty (the grid has no blocks)"
+                                   : "each block is one undeveloped parcel with population 0"));
+  // With a parcel table the table's population replaces the density grid's.
+  if (input.parcelTable.empty() && cellsWithoutParcel > 0)
+    result.warnings.push_back(peopleText(densityWithoutParcel) + " of the density grid lie on " +
+                              std::to_string(cellsWithoutParcel) +
+                              (cellsWithoutParcel == 1 ? " cell" : " cells") +
+                              " without a parcel (id 0) and reach no parcel of the parcels layer");
+  double inBlocks = 0, unmatched = 0;
+  const std::vector<int>& vectorBlockOfSim = result.city.blocks.matching.vectorBlockOfSim;
+  for (const SimParcel& p : result.parcels) {
+    if (p.simBlock < 0) continue;
+    inBlocks += p.population;
+    if (static_cast<size_t>(p.simBlock) >= vectorBlockOfSim.size() || vectorBlockOfSim[p.simBlock] < 0)
+      unmatched += p.population;
+  }
+  double kept = 0, ignored = 0;
+  for (const parcels::BlockParcels& b : result.city.parcels.blocks) {
+    ignored += b.report.ignoredPopulation;
+    for (const parcels::VectorParcel& parcel : b.parcels) kept += parcel.population;
+  }
+  const double lost = inBlocks - kept;
+  if (!(lost > 1e-6 * std::max(1.0, inBlocks))) return;
+  std::string why;
+  if (unmatched > 0) why += peopleText(unmatched) + " in simulated blocks that no vector block takes";
+  if (ignored > 0)
+    why += (why.empty() ? "" : ", ") + peopleText(ignored) +
+           " of land uses that no parcel of their block gets (vectorize_report ignored_population)";
+  const double unexplained = lost - unmatched - ignored;
+  if (unexplained > 1e-6 * std::max(1.0, inBlocks))
+    why += (why.empty() ? "" : ", and ") + peopleText(unexplained) + " lost for no reason the stages record";
+  // peopleText(x) ends in " people" (or " person"): "12 of the 15 people".
+  std::string keptNumber = peopleText(kept);
+  keptNumber.resize(keptNumber.rfind(' '));
+  result.warnings.push_back("the parcels layer holds " + keptNumber + " of the " + peopleText(inBlocks) +
+                            " of the input parcels inside blocks" +
+                            (why.empty() ? std::string() : "; the others are " + why));
+}
+
+}  // namespace
+
+VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& options,
+                          const Progress& progress) {
+  validate(input);
+  VectorizeResult result;
+  result.cells = input.landUse;
+  RoadGraph& graph = result.roads;
+
+  // Stage runner: progress sub-range, timing, per-stage peak memory, graph snapshot. The road stages
+  // take the first 30% of the progress range when stages C-E follow.
+  const Progress roadProgress = options.roadsOnly ? progress : subProgress(progress, 0.0, 0.3);
+  double done = 0;
+  auto run = [&](const std::string& id, const std::string& name, double weight, bool graphStage,
+                 const std::function<std::string(const Progress&)>& body) {
+    const Progress sub = subProgress(roadProgress, done, std::min(1.0, done + weight));
+    reportProgress(sub, 0.0, name);
+    resetPeakMemory();
+    const auto t0 = std::chrono::steady_clock::now();
+    StageReport report;
+    report.id = id;
+    report.name = name;
+    report.summary = body(sub);
+    report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    report.peakMemoryKb = peakMemoryKb();
+    report.nodes = graph.aliveCount();
+    report.links = graph.linkCount();
+    result.stages.push_back(report);
+    if (graphStage && options.keepStageGraphs) result.stageGraphs.emplace_back(id + " " + name, graph);
+    done = std::min(1.0, done + weight);
+    reportProgress(sub, 1.0, name);
+  };
+
+  std::size_t roadCells = 0;
+  for (std::uint8_t c : input.landUse.cells) roadCells += isRoadCode(c);
+  if (roadCells == 0)
+    result.warnings.push_back(
+        "the land-use grid has no road cells (codes 2 and 3): the road layers are empty");
+  else if (roadCells == input.landUse.cells.size())
+    result.warnings.push_back(
+        "every cell of the land-use grid is road: there are no blocks, and the road network collapses to "
+        "intersection clusters");
+
+  run("A2", "raw blocks", 0.05, false, [&](const Progress& p) {
+    RawBlocks rb = buildRawBlocks(result.cells, options.rawBlocks, p);
+    result.blocks = std::move(rb.blocks);
+    result.blockOf = std::move(rb.blockOf);
+    std::size_t internal = 0;
+    for (const SimBlock& b : result.blocks) internal += b.internal;
+    return counts(result.blocks.size(), " blocks (", internal, " internal)");
+  });
+  run("A3", "patch cleaning", 0.05, false, [&](const Progress& p) {
+    if (!options.cleanIntersectionPatches) return std::string("skipped (every secondary patch kept)");
+    const PatchCleaningStats s = cleanIntersectionPatches(result.cells, p, options.patchCleaning);
+    return counts(s.searches, " clusters searched, ", s.removedPatches, " patches removed");
+  });
+  run("A4", "road graph", 0.2, true, [&](const Progress& p) {
+    RoadGraphBuild b = buildRoadGraph(result.cells, options.roadGraph, p);
+    graph = std::move(b.graph);
+    return counts(b.squaresOpened, " 2x2 squares opened, ", b.squaresLeft, " left, ", b.clustersMerged,
+                  " clusters merged, ", b.nodesInserted, " nodes inserted");
+  });
+  run("A4.8", "perimeters", 0.05, true, [&](const Progress& p) {
+    const PerimeterStats s =
+        addExternalPerimeters(graph, result.cells, result.blockOf, result.blocks, options.perimeters, p);
+    if (s.closedLoops > 0)
+      result.warnings.push_back(
+          counts(s.closedLoops,
+                 s.closedLoops == 1 ? " closed boundary between undeveloped land and external blocks meets"
+                                    : " closed boundaries between undeveloped land and external blocks meet",
+                 " no road and got no perimeter line (islands become blocks of their own outline)"));
+    return counts(s.lines, " perimeter lines, ", s.closedLoops, " closed loops skipped");
+  });
+  run("A5", "parcels", 0.03, false, [&](const Progress& p) {
+    ParcelLoading pl = loadParcels(input, result.blockOf, result.blocks, p, options.parcelLoading);
+    result.parcels = std::move(pl.parcels);
+    if (pl.unattached > 0)
+      result.warnings.push_back(unattachedParcelsWarning(pl, options.parcelLoading.majorityBlock));
+    return counts(result.parcels.size(), " parcels, ", pl.unattached, " unattached, ", pl.derivedFromRaster,
+                  " derived from the rasters");
+  });
+  run("B1", "intersection straightening", 0.1, true, [&](const Progress& p) {
+    const StraighteningStats s = straightenIntersections(graph, options.straightening, p);
+    return counts(s.intersections, " intersections, ", s.pairsSnapped, " pairs snapped");
+  });
+  run("B2", "road smoothing", 0.05, true, [&](const Progress& p) {
+    RoadSmoothingOptions smoothing = options.roadSmoothing;
+    if (options.keepRoadCellsCovered) smoothing.coverCells = &result.cells;
+    const RoadSmoothingStats s = smoothRoads(graph, smoothing, p);
+    return counts(s.nodesMoved, " nodes smoothed, ", s.intersectionsMoved, " intersections re-straightened");
+  });
+  run("B3", "primary/secondary connection", 0.1, true, [&](const Progress& p) {
+    const RoadConnectionStats s = connectRoads(graph, options.connection, p);
+    return counts(s.connections, " connections, ", s.unconnected, " without a primary node in reach, ",
+                  s.clustersMerged, " clusters merged, ", s.perimeterEndsLinked, " perimeter ends linked, ",
+                  s.perimeterEndsLeft, " left");
+  });
+  run("B4", "cycle removal", 0.15, true, [&](const Progress& p) {
+    CycleRemovalOptions cycles = options.cycles;
+    if (options.keepDevelopedCycles) cycles.landUse = &result.cells;
+    CycleRemovalStats s = removeShortCycles(graph, cycles, p);
+    result.cycleRemovedLinks = std::move(s.removedLinks);
+    return counts(s.crossingsNoded, " crossings noded, ", s.segmentsRemoved, " segments removed in ",
+                  s.rounds, " rounds, ", s.developedFacesKept, " faces around developed land kept");
+  });
+  run("B5", "intersection simplification", 0.05, true, [&](const Progress& p) {
+    IntersectionSimplificationOptions simplification = options.intersections;
+    if (options.keepRoadCellsCovered) simplification.coverCells = &result.cells;
+    IntersectionSimplificationStats s = simplifyIntersections(graph, simplification, p);
+    result.deadEndRemovedLinks = std::move(s.removedLinks);
+    return counts(s.deadEndsRemoved, " dead ends removed, ", s.nodesContracted, " nodes contracted, ",
+                  s.contractionsKept, " contractions left out to keep road cells covered, ",
+                  s.intersectionsMerged, " intersections merged");
+  });
+  run("B6", "curve smoothing", 0.12, true, [&](const Progress& p) {
+    CurveSmoothingOptions curves = options.curves;
+    if (options.keepRoadCellsCovered) curves.coverCells = &result.cells;
+    const CurveSmoothingStats s = smoothCurves(graph, curves, p);
+    return counts(s.bends, " bends, ", s.nodesInserted, " nodes inserted, ", s.passes, " passes");
+  });
+  run("F", "road output", 0.05, false, [&](const Progress& p) {
+    std::size_t noded = 0;
+    if (options.planarize) {
+      noded = nodeCrossingsAndContractTinyLinks(graph);
+      // [INFERENCE] Loops that B5/B6 collapsed onto a line (doubled roads enclosing nothing) go too.
+      CycleRemovalOptions degenerate;
+      degenerate.maxCycleNodes = std::numeric_limits<int>::max();
+      degenerate.maxFaceArea = 1e-4;
+      removeShortCycles(graph, degenerate);
+      noded += nodeCrossingsAndContractTinyLinks(graph);
+    }
+    reportProgress(p, 0.5, "road output");
+    result.network = buildRoadNetwork(graph, options.outputSimplification);
+    std::size_t restored = 0, uncovering = 0;
+    if (options.outputSimplification > 0) {
+      const RoadNetwork exact = buildRoadNetwork(graph, 0.0);
+      uncovering = restoreUncoveringSegments(result.network, exact, input.landUse, result.cells,
+                                             options.outputSimplification);
+      restored = restoreTouchingSegments(result.network, exact);
+    }
+    std::vector<Layer> layers = roadLayers(result.network, input.spec);
+    const std::size_t segments = layers[0].features.size();
+    for (Layer& l : layers) result.layers.push_back(std::move(l));
+    return counts(noded, " crossings noded, ", segments, " road segments, ", restored,
+                  " kept unsimplified (touching another), ", uncovering,
+                  " simplified less (uncovering a road cell)");
+  });
+  if (!options.roadsOnly) {
+    const auto t0 = std::chrono::steady_clock::now();
+    resetPeakMemory();
+    CityOptions city = options.city;
+    city.blocks.external.undeveloped = options.perimeters;
+    result.city = vectorizeCity(result.network, result.cells, result.blocks, result.parcels, input.spec, city,
+                                subProgress(progress, 0.3, 1.0));
+    StageReport report;
+    report.id = "C-E";
+    report.name = "pavement, blocks, spines, parcels";
+    report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    report.peakMemoryKb = peakMemoryKb();
+    std::size_t parcelCount = 0;
+    for (const auto& b : result.city.parcels.blocks) parcelCount += b.parcels.size();
+    report.summary = counts(result.city.blocks.blocks.features.size(), " blocks, ", parcelCount, " parcels, ",
+                            result.city.blocks.stats.failsafeUses, " failsafe matches (",
+                            result.city.blocks.stats.failsafeWithParcels, " with parcels), ",
+                            result.city.blocks.stats.overlapUses, " by cell overlap, ",
+                            result.city.blocks.stats.underPavement, " left under pavement");
+    result.stages.push_back(report);
+    for (const Layer& l : result.city.layers) result.layers.push_back(l);
+    populationWarnings(input, result);
+  }
+  reportProgress(progress, 1.0, "done");
+  return result;
+}
+
+}  // namespace urbanvec::vectorize

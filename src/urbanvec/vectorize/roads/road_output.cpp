@@ -1,0 +1,231 @@
+#include "urbanvec/vectorize/roads/road_output.hpp"
+
+#include <cstdint>
+
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
+#include "urbanvec/core/geos.hpp"
+#include "urbanvec/vectorize/roads/road_graph_build.hpp"
+
+namespace urbanvec::vectorize {
+
+std::vector<LineString> simplifyTogether(const std::vector<LineString>& lines, double tolerance) {
+  geos::Context ctx;
+  geos::GeomPtr all = ctx.multiLineString(lines);
+  geos::GeomPtr simple =
+      ctx.own(GEOSTopologyPreserveSimplify_r(ctx.handle(), all.get(), tolerance), "road simplification");
+  const int n = GEOSGetNumGeometries_r(ctx.handle(), simple.get());
+  if (n != static_cast<int>(lines.size())) return lines;  // GEOS changed the structure: keep the originals
+  std::vector<LineString> out;
+  out.reserve(lines.size());
+  for (int k = 0; k < n; ++k) {
+    LineString l = ctx.coordinates(GEOSGetGeometryN_r(ctx.handle(), simple.get(), k));
+    // Exact end nodes, so segments keep meeting at the very same coordinates.
+    if (l.size() < 2) l = {lines[k].front(), lines[k].back()};
+    l.front() = lines[k].front();
+    l.back() = lines[k].back();
+    out.push_back(std::move(l));
+  }
+  return out;
+}
+
+namespace {
+
+const char* className(NodeType t) {
+  switch (t) {
+    case NodeType::Primary:
+      return "primary";
+    case NodeType::Secondary:
+      return "secondary";
+    case NodeType::Perimeter:
+      return "perimeter";
+  }
+  return "secondary";
+}
+
+}  // namespace
+
+RoadNetwork buildRoadNetwork(const RoadGraph& g, double simplifyTolerance) {
+  RoadNetwork net;
+  const size_t n = g.nodes.size();
+  std::vector<std::int32_t> outId(n, -1);
+  auto addEnd = [&](int i, NetworkNodeKind kind) {
+    outId[i] = static_cast<std::int32_t>(net.nodes.size());
+    net.nodes.push_back({g.nodes[i].p, kind, g.degree(i)});
+  };
+  for (size_t i = 0; i < n; ++i) {
+    const RoadNode& v = g.nodes[i];
+    if (!v.alive) continue;
+    const int deg = g.degree(static_cast<int>(i));
+    if (deg >= 3)
+      addEnd(static_cast<int>(i), NetworkNodeKind::Intersection);
+    else if (deg <= 1)
+      addEnd(static_cast<int>(i), NetworkNodeKind::DeadEnd);
+    else if (linkType(g, static_cast<int>(i), v.links[0]) != linkType(g, static_cast<int>(i), v.links[1]))
+      addEnd(static_cast<int>(i), NetworkNodeKind::Connection);
+  }
+  // Walk segments from every end; `used` marks links by (node, slot).
+  std::vector<std::vector<char>> used(n);
+  for (size_t i = 0; i < n; ++i) used[i].assign(g.nodes[i].links.size(), 0);
+  auto markUsed = [&](int a, int b) {
+    const auto& la = g.nodes[a].links;
+    for (size_t k = 0; k < la.size(); ++k)
+      if (la[k] == b) used[a][k] = 1;
+    const auto& lb = g.nodes[b].links;
+    for (size_t k = 0; k < lb.size(); ++k)
+      if (lb[k] == a) used[b][k] = 1;
+  };
+  auto walk = [&](int start, size_t slot) {
+    NetworkSegment seg;
+    seg.points.push_back(g.nodes[start].p);
+    const NodeType cls = linkType(g, start, g.nodes[start].links[slot]);
+    seg.roadClass = cls == NodeType::Primary     ? RoadClass::Primary
+                    : cls == NodeType::Perimeter ? RoadClass::Perimeter
+                                                 : RoadClass::Secondary;
+    int prev = start, cur = g.nodes[start].links[slot];
+    markUsed(prev, cur);
+    while (true) {
+      seg.points.push_back(g.nodes[cur].p);
+      if (outId[cur] >= 0) break;
+      const auto& l = g.nodes[cur].links;
+      const int next = l[0] == prev ? l[1] : l[0];
+      prev = cur;
+      cur = next;
+      markUsed(prev, cur);
+    }
+    seg.fromNode = outId[start];
+    seg.toNode = outId[cur];
+    net.segments.push_back(std::move(seg));
+  };
+  for (size_t i = 0; i < n; ++i) {
+    if (outId[i] < 0) continue;
+    for (size_t k = 0; k < g.nodes[i].links.size(); ++k)
+      if (!used[i][k]) walk(static_cast<int>(i), k);
+  }
+  // What is left are closed rings of degree-2 nodes of one class: each starts at its lowest node.
+  for (size_t i = 0; i < n; ++i) {
+    if (!g.nodes[i].alive || outId[i] >= 0 || g.nodes[i].links.empty() || used[i][0]) continue;
+    addEnd(static_cast<int>(i), NetworkNodeKind::Road);
+    walk(static_cast<int>(i), 0);
+  }
+  if (simplifyTolerance > 0 && !net.segments.empty()) {
+    std::vector<LineString> lines;
+    lines.reserve(net.segments.size());
+    for (const NetworkSegment& s : net.segments) lines.push_back(s.points);
+    lines = simplifyTogether(lines, simplifyTolerance);
+    for (size_t k = 0; k < lines.size(); ++k) net.segments[k].points = std::move(lines[k]);
+    releaseFreedMemory();  // the simplifier's index: ~400 bytes per road vertex
+  }
+  return net;
+}
+
+void releaseFreedMemory() {
+#if defined(__GLIBC__)
+  malloc_trim(0);
+#endif
+}
+
+std::vector<Layer> roadLayers(const RoadNetwork& net, const GridSpec& spec) {
+  Layer roads;
+  roads.name = "roads";
+  roads.geometryType = GeometryType::LineString;
+  roads.fields = {{"road_id", FieldType::Integer},
+                  {"road_class", FieldType::String},
+                  {"from_node", FieldType::Integer},
+                  {"to_node", FieldType::Integer},
+                  {"length", FieldType::Real}};
+  Layer nodes;
+  nodes.name = "road_nodes";
+  nodes.geometryType = GeometryType::Point;
+  nodes.fields = {
+      {"node_id", FieldType::Integer}, {"kind", FieldType::String}, {"degree", FieldType::Integer}};
+  static const char* const kinds[] = {"intersection", "dead_end", "connection", "road"};
+  static const char* const classes[] = {"primary", "secondary", "perimeter"};
+  for (size_t k = 0; k < net.nodes.size(); ++k) {
+    Feature f;
+    f.geometry = toWorld(net.nodes[k].position, spec);
+    f.values = {static_cast<std::int64_t>(k) + 1, std::string(kinds[static_cast<int>(net.nodes[k].kind)]),
+                static_cast<std::int64_t>(net.nodes[k].degree)};
+    nodes.features.push_back(std::move(f));
+  }
+  for (size_t k = 0; k < net.segments.size(); ++k) {
+    const NetworkSegment& s = net.segments[k];
+    LineString world;
+    world.reserve(s.points.size());
+    for (const Vec2& p : s.points) world.push_back(toWorld(p, spec));
+    Feature f;
+    f.values = {static_cast<std::int64_t>(k) + 1, std::string(classes[static_cast<int>(s.roadClass)]),
+                static_cast<std::int64_t>(s.fromNode) + 1, static_cast<std::int64_t>(s.toNode) + 1,
+                length(world)};
+    f.geometry = std::move(world);
+    roads.features.push_back(std::move(f));
+  }
+  return {roads, nodes};
+}
+
+SimulatedCity simulatedCity(const Grid<std::uint8_t>& cells, const std::vector<SimBlock>& blocks,
+                            const std::vector<SimParcel>& parcels) {
+  SimulatedCity city;
+  city.grid = Grid<LandUse>(cells.width, cells.height, LandUse::Unused);
+  for (size_t i = 0; i < cells.cells.size(); ++i)
+    city.grid.cells[i] =
+        cells.cells[i] < kLandUseClassCount ? static_cast<LandUse>(cells.cells[i]) : LandUse::Unused;
+  auto cellOf = [&](std::int32_t i) { return GridCell{i % cells.width, i / cells.width}; };
+  for (const SimBlock& b : blocks) {
+    SimulatedBlock sb;
+    sb.id = b.id;
+    sb.internal = b.internal;
+    sb.centre = b.center;
+    for (std::int32_t i : b.patches) sb.cells.push_back(cellOf(i));
+    for (int p : b.parcels) sb.parcelIds.push_back(parcels[p].id);
+    city.blocks.push_back(std::move(sb));
+  }
+  for (const SimParcel& p : parcels) {
+    SimulatedParcel sp;
+    sp.id = p.id;
+    sp.landUse = p.use;
+    sp.centre = p.center;
+    for (std::int32_t i : p.patches) sp.cells.push_back(cellOf(i));
+    city.parcels.push_back(std::move(sp));
+  }
+  return city;
+}
+
+std::vector<Layer> rawGraphLayers(const RoadGraph& g, const GridSpec& spec, const std::string& prefix) {
+  Layer links;
+  links.name = prefix + "links";
+  links.geometryType = GeometryType::LineString;
+  links.fields = {{"link_id", FieldType::Integer},
+                  {"from_node", FieldType::Integer},
+                  {"to_node", FieldType::Integer},
+                  {"link_class", FieldType::String}};
+  Layer nodes;
+  nodes.name = prefix + "nodes";
+  nodes.geometryType = GeometryType::Point;
+  nodes.fields = {{"node_id", FieldType::Integer},
+                  {"node_type", FieldType::String},
+                  {"degree", FieldType::Integer},
+                  {"intersection", FieldType::Integer}};
+  for (size_t i = 0; i < g.nodes.size(); ++i) {
+    const RoadNode& v = g.nodes[i];
+    if (!v.alive) continue;
+    Feature f;
+    f.geometry = toWorld(v.p, spec);
+    f.values = {static_cast<std::int64_t>(i), std::string(className(v.type)),
+                static_cast<std::int64_t>(v.links.size()), static_cast<std::int64_t>(v.intersection)};
+    nodes.features.push_back(std::move(f));
+    for (int j : v.links) {
+      if (j < static_cast<int>(i)) continue;
+      Feature l;
+      l.geometry = LineString{toWorld(v.p, spec), toWorld(g.nodes[j].p, spec)};
+      l.values = {static_cast<std::int64_t>(links.features.size()) + 1, static_cast<std::int64_t>(i),
+                  static_cast<std::int64_t>(j), std::string(className(linkType(g, static_cast<int>(i), j)))};
+      links.features.push_back(std::move(l));
+    }
+  }
+  return {links, nodes};
+}
+
+}  // namespace urbanvec::vectorize
