@@ -72,7 +72,7 @@ expect_failure 2 "ERROR: unknown option '-bogus' (see 'urbanvec evaluate --help'
 expect_failure 2 "ERROR: 'urbanvec evaluate' expects <result> <truth>, got 1 argument" "$T"
 expect_failure 2 "ERROR: -cell-size must be at least 1e-06, got 0" -cell-size 0 "$T" "$T"
 expect_failure 2 "ERROR: -min-iou expects a number, got 'high'" -min-iou high "$T" "$T"
-expect_failure 1 "ERROR: -blocks-where 'NOPE > 1' cannot select features of layer 'blocks' of '$T' (failed to prepare SQL: SELECT m.\"fid\", m.\"geom\", m.\"block_id\", m.\"kind\" FROM \"blocks\" m WHERE NOPE > 1)" \
+expect_failure 2 "ERROR: -blocks-where 'NOPE > 1' cannot select features of layer 'blocks' of '$T' (failed to prepare SQL: SELECT m.\"fid\", m.\"geom\", m.\"block_id\", m.\"kind\" FROM \"blocks\" m WHERE NOPE > 1)" \
   -blocks-where "NOPE > 1" "$T" "$T"
 
 # The -json output: an unwritable place, or an existing file without -overwrite.

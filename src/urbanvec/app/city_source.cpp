@@ -98,8 +98,8 @@ OGRLayer* pickLayer(GDALDataset& ds, const std::string& path, const std::string&
   if (!given.empty()) {
     layer = ds.GetLayerByName(given.c_str());
     if (!layer)
-      throw invalidOption(option + ": input '" + path + "' has no layer '" + given +
-                          "' (layers: " + layerList(ds) + ")");
+      throw invalidInput(option + ": input '" + path + "' has no layer '" + given +
+                         "' (layers: " + layerList(ds) + ")");
   } else {
     for (const std::string& name : conventional)
       if ((layer = ds.GetLayerByName(name.c_str()))) break;
