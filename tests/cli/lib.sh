@@ -36,3 +36,21 @@ finish() {
   if [ "$FAILURES" -ne 0 ]; then echo "$FAILURES check(s) failed" >&2; exit 1; fi
   echo "all checks passed"
 }
+
+# run_unprivileged <args...>: like run_cmd, but as an unprivileged user even when the tests run as root
+# (CI does), so permission checks really apply: root runs a copy of the program as user nobody.
+run_unprivileged() {
+  local prog="$URBANVEC"
+  local as=()
+  if [ "$(id -u)" -eq 0 ]; then
+    chmod 755 "$WORK"
+    prog="$WORK/.urbanvec_unprivileged"
+    [ -x "$prog" ] || { cp "$URBANVEC" "$prog" && chmod 755 "$prog"; }
+    as=(setpriv --reuid=65534 --regid=65534 --clear-groups)
+  fi
+  set +e
+  OUT=$("${as[@]}" "$prog" "$@" 2>"$WORK/.stderr")
+  STATUS=$?
+  ERR=$(cat "$WORK/.stderr")
+  set -e
+}

@@ -90,11 +90,10 @@ run_cmd boundary -q "$WORK/pixels.gpkg/out.gpkg"
 expect_status 1
 expect_stderr_contains "cannot write output file"
 mkdir "$WORK/readonly" && chmod 555 "$WORK/readonly"
-if [ "$(id -u)" -ne 0 ]; then
-  run_cmd boundary -q "$WORK/readonly/out.gpkg"
-  expect_status 1
-  expect_stderr_contains "is not writable"
-fi
+run_unprivileged boundary -q "$WORK/readonly/out.gpkg"  # as nobody when the tests run as root
+expect_status 1
+expect_stderr "ERROR: cannot write output file '$WORK/readonly/out.gpkg': folder '$WORK/readonly' is not writable"
+expect_eq "$(ls -A "$WORK/readonly")" "" "a read-only folder stays empty"
 run_cmd boundary -q -a_srs EPSG:4326 -cellsize 10 "$WORK/bad.gpkg"
 expect_status 2
 expect_stderr_contains "is geographic"

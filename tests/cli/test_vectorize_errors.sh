@@ -188,15 +188,14 @@ run_cmd vectorize -q -overwrite "$WORK/town.tif" "$WORK/folder.gpkg"
 expect_status 1
 expect_stderr "ERROR: output file '$WORK/folder.gpkg' exists and is a folder"
 expect_eq "$(ls -A "$WORK/folder.gpkg")" "" "a folder in the output's place stays empty"
-if [ "$(id -u)" -ne 0 ]; then
-  mkdir "$WORK/readonly"
-  chmod a-w "$WORK/readonly"
-  run_cmd vectorize -q "$WORK/town.tif" "$WORK/readonly/out.gpkg"
-  expect_status 1
-  expect_stderr "ERROR: cannot write output file '$WORK/readonly/out.gpkg': folder '$WORK/readonly' is not writable"
-  expect_eq "$(ls -A "$WORK/readonly")" "" "a read-only folder stays empty"
-  chmod u+w "$WORK/readonly"
-fi
+# A read-only folder, also when the tests run as root (run_unprivileged).
+mkdir "$WORK/readonly"
+chmod 555 "$WORK/readonly"
+run_unprivileged vectorize -q "$WORK/town.tif" "$WORK/readonly/out.gpkg"
+expect_status 1
+expect_stderr "ERROR: cannot write output file '$WORK/readonly/out.gpkg': folder '$WORK/readonly' is not writable"
+expect_eq "$(ls -A "$WORK/readonly")" "" "a read-only folder stays empty"
+chmod u+w "$WORK/readonly"
 
 # An existing output without -overwrite is an error and stays untouched; with -overwrite it is replaced.
 echo "keep me" >"$O"

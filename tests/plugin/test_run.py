@@ -157,7 +157,6 @@ class RunTest(unittest.TestCase):
     def test_cancelling_mid_run_stops_the_program_and_leaves_no_output(self):
         out = os.path.join(self.tmp, 'cancelled_grid')
         feedback = RecordingFeedback(cancel_at=20)
-        start = time.monotonic()
         with self.assertRaisesRegex(QgsProcessingException, 'cancelled'):
             run('urbanvec:gridify', {'INPUT': OSM, 'OUTPUT_DIR': out, 'TR': 6}, feedback)
         self.assertIsNotNone(feedback.cancelled_at, 'the run ended before it could be cancelled')
@@ -166,7 +165,6 @@ class RunTest(unittest.TestCase):
         self.assertFalse(os.path.exists(out))
         self.assertEqual(os.listdir(self.tmp), [], 'a temporary output was left behind')
         self.assertEqual(running_with(out), [], 'the program is still running')
-        self.assertGreater(time.monotonic() - start, 0)
 
     def test_bad_input_raises_with_the_programs_message(self):
         inputs = qgis_start.make_inputs(self.tmp)  # QGIS opens two.gpkg fine; the program finds no such layer
