@@ -15,6 +15,7 @@
 #include "urbanvec/core/utm.hpp"
 #include "urbanvec/io/crs.hpp"
 #include "urbanvec/io/gdal_init.hpp"
+#include "urbanvec/io/gdal_types.hpp"
 
 namespace urbanvec::app {
 
@@ -26,35 +27,16 @@ namespace {
 using gridify::CityData;
 using gridify::Tags;
 
-struct DatasetCloser {
-  void operator()(GDALDataset* ds) const { GDALClose(ds); }
-};
-using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
-
 struct TransformDeleter {
   void operator()(OGRCoordinateTransformation* t) const { OGRCoordinateTransformation::DestroyCT(t); }
 };
-
-LineString fromCurve(const OGRSimpleCurve& curve) {
-  LineString out(static_cast<size_t>(curve.getNumPoints()));
-  for (int i = 0; i < curve.getNumPoints(); ++i) out[static_cast<size_t>(i)] = {curve.getX(i), curve.getY(i)};
-  return out;
-}
-
-Polygon fromPolygon(const OGRPolygon& polygon) {
-  Polygon out;
-  if (const OGRLinearRing* ring = polygon.getExteriorRing()) out.outer = fromCurve(*ring);
-  for (int i = 0; i < polygon.getNumInteriorRings(); ++i)
-    out.holes.push_back(fromCurve(*polygon.getInteriorRing(i)));
-  return out;
-}
 
 /// Linear parts of a geometry.
 void collectLines(const OGRGeometry* g, MultiLineString& out) {
   if (!g || g->IsEmpty()) return;
   switch (wkbFlatten(g->getGeometryType())) {
     case wkbLineString:
-      out.push_back(fromCurve(*g->toLineString()));
+      out.push_back(fromOgrCurve(*g->toLineString()));
       break;
     case wkbMultiLineString:
     case wkbGeometryCollection:
@@ -71,7 +53,7 @@ void collectPolygons(const OGRGeometry* g, MultiPolygon& out) {
   if (!g || g->IsEmpty()) return;
   switch (wkbFlatten(g->getGeometryType())) {
     case wkbPolygon:
-      out.push_back(fromPolygon(*g->toPolygon()));
+      out.push_back(fromOgrPolygon(*g->toPolygon()));
       break;
     case wkbMultiPolygon:
     case wkbGeometryCollection:
@@ -202,15 +184,6 @@ OGRSpatialReference srsFromWkt(const std::string& wkt) {
   srs.importFromWkt(wkt.c_str());
   srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   return srs;
-}
-
-std::string wktOf(const OGRSpatialReference& srs) {
-  char* wkt = nullptr;
-  const char* opts[] = {"FORMAT=WKT2_2019", nullptr};
-  srs.exportToWkt(&wkt, opts);
-  std::string out = wkt ? wkt : "";
-  CPLFree(wkt);
-  return out;
 }
 
 }  // namespace

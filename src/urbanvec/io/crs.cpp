@@ -9,6 +9,7 @@
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/core/utm.hpp"
 #include "urbanvec/io/gdal_init.hpp"
+#include "urbanvec/io/gdal_types.hpp"
 
 namespace urbanvec::io {
 
@@ -17,12 +18,7 @@ std::string crsToWkt(const std::string& userCrs, const std::string& option) {
   OGRSpatialReference srs;
   if (userCrs.empty() || srs.SetFromUserInput(userCrs.c_str()) != OGRERR_NONE)
     throw invalidOption(option + ": cannot understand the CRS '" + userCrs + "'");
-  char* wkt = nullptr;
-  const char* opts[] = {"FORMAT=WKT2_2019", nullptr};
-  srs.exportToWkt(&wkt, opts);
-  std::string out = wkt ? wkt : "";
-  CPLFree(wkt);
-  return out;
+  return wktOf(srs);
 }
 
 bool isGeographic(const std::string& wkt) {

@@ -12,15 +12,11 @@
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/io/creation_options.hpp"
 #include "urbanvec/io/gdal_init.hpp"
+#include "urbanvec/io/gdal_types.hpp"
 
 namespace urbanvec::io {
 
 namespace {
-
-struct DatasetCloser {
-  void operator()(GDALDataset* ds) const { GDALClose(ds); }
-};
-using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
 
 DatasetPtr openRaster(const std::string& path, const std::string& role) {
   ensureGdal();

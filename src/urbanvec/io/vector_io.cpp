@@ -19,16 +19,12 @@
 #include "urbanvec/io/atomic_output.hpp"
 #include "urbanvec/io/creation_options.hpp"
 #include "urbanvec/io/gdal_init.hpp"
+#include "urbanvec/io/gdal_types.hpp"
 #include "urbanvec/io/layer_styles.hpp"
 
 namespace urbanvec::io {
 
 namespace {
-
-struct DatasetCloser {
-  void operator()(GDALDataset* ds) const { GDALClose(ds); }
-};
-using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
 
 OGRwkbGeometryType ogrType(GeometryType t) {
   switch (t) {
@@ -96,20 +92,6 @@ std::unique_ptr<OGRGeometry> toOgr(const Geometry& geometry) {
   return std::visit(Visitor{}, geometry);
 }
 
-LineString fromCurve(const OGRSimpleCurve& curve) {
-  LineString out(static_cast<size_t>(curve.getNumPoints()));
-  for (int i = 0; i < curve.getNumPoints(); ++i) out[static_cast<size_t>(i)] = {curve.getX(i), curve.getY(i)};
-  return out;
-}
-
-Polygon fromOgrPolygon(const OGRPolygon& polygon) {
-  Polygon out;
-  if (const OGRLinearRing* exterior = polygon.getExteriorRing()) out.outer = fromCurve(*exterior);
-  for (int i = 0; i < polygon.getNumInteriorRings(); ++i)
-    out.holes.push_back(fromCurve(*polygon.getInteriorRing(i)));
-  return out;
-}
-
 Geometry fromOgr(const OGRGeometry* geometry) {
   if (!geometry || geometry->IsEmpty()) return std::monostate{};
   std::unique_ptr<OGRGeometry> linear;
@@ -123,7 +105,7 @@ Geometry fromOgr(const OGRGeometry* geometry) {
       return Vec2{p->getX(), p->getY()};
     }
     case wkbLineString:
-      return fromCurve(*geometry->toLineString());
+      return fromOgrCurve(*geometry->toLineString());
     case wkbPolygon:
       return fromOgrPolygon(*geometry->toPolygon());
     case wkbMultiPolygon: {
@@ -133,7 +115,7 @@ Geometry fromOgr(const OGRGeometry* geometry) {
     }
     case wkbMultiLineString: {
       MultiLineString out;
-      for (const OGRLineString* l : *geometry->toMultiLineString()) out.push_back(fromCurve(*l));
+      for (const OGRLineString* l : *geometry->toMultiLineString()) out.push_back(fromOgrCurve(*l));
       return out;
     }
     case wkbMultiPoint: {
