@@ -126,6 +126,42 @@ std::vector<PlanarGraph::Face> PlanarGraph::faces() const {
   return out;
 }
 
+std::vector<PlanarGraph::Face> PlanarGraph::facesOutlineFirst() const {
+  std::vector<Face> all = faces();
+  int count = 0;
+  const std::vector<int> component = components(&count);
+  // The lowest node of each component (least y, then x, then id).
+  std::vector<int> lowest(static_cast<std::size_t>(count), -1);
+  for (std::size_t n = 0; n < nodes_.size(); ++n) {
+    int& best = lowest[static_cast<std::size_t>(component[n])];
+    const Vec2& p = nodes_[n].p;
+    if (best < 0 || p.y < node(best).p.y || (p.y == node(best).p.y && p.x < node(best).p.x))
+      best = static_cast<int>(n);
+  }
+  // Its outer face: among the faces through that node, the one with the least signed area.
+  std::vector<int> outline(static_cast<std::size_t>(count), -1);
+  for (std::size_t f = 0; f < all.size(); ++f) {
+    const int c = component[static_cast<std::size_t>(origin(all[f].halfEdges.front()))];
+    bool throughLowest = false;
+    for (int h : all[f].halfEdges)
+      throughLowest = throughLowest || origin(h) == lowest[static_cast<std::size_t>(c)];
+    int& chosen = outline[static_cast<std::size_t>(c)];
+    if (throughLowest &&
+        (chosen < 0 || all[f].twiceSignedArea < all[static_cast<std::size_t>(chosen)].twiceSignedArea))
+      chosen = static_cast<int>(f);
+  }
+  std::vector<Face> out;
+  std::vector<char> taken(all.size(), 0);
+  for (int f : outline)
+    if (f >= 0) {
+      out.push_back(all[static_cast<std::size_t>(f)]);
+      taken[static_cast<std::size_t>(f)] = 1;
+    }
+  for (std::size_t f = 0; f < all.size(); ++f)
+    if (!taken[f]) out.push_back(std::move(all[f]));
+  return out;
+}
+
 std::vector<PlanarGraph::Face> PlanarGraph::boundedFaces(double minTwiceArea) const {
   std::vector<Face> all = faces();
   std::vector<Face> out;

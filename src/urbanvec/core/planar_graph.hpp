@@ -67,7 +67,12 @@ class PlanarGraph {
   /// half-edge, taking nodes by id and each node's outgoing half-edges in rotation order — so for a
   /// component, the first face found is the one left of its lowest node's first edge.
   std::vector<Face> faces() const;
-  /// The bounded faces (twiceSignedArea > minTwiceArea), outermost-last order as faces() gives them.
+  /// The faces with each connected component's outline first, as the cadastre circuits need it
+  /// ("outline is entry 0"): per component in order, its outer face — the face through its lowest
+  /// node (least y, then x) with the least signed area — then every other face in faces() order. The
+  /// walk closes on half-edges, so an outline through a cut vertex (a figure eight) stays one face.
+  std::vector<Face> facesOutlineFirst() const;
+  /// The bounded faces (twiceSignedArea > minTwiceArea), in the order faces() gives them.
   std::vector<Face> boundedFaces(double minTwiceArea = 1e-12) const;
   /// Each face's nodes, one per half-edge origin.
   std::vector<int> faceNodes(const Face& face) const;

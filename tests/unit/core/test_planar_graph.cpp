@@ -211,3 +211,40 @@ TEST(PlanarGraph, FromLinesNodesCrossingsAndSnapsNearEnds) {
   EXPECT_EQ(ring.boundedFaces().size(), 1u);
   EXPECT_DOUBLE_EQ(ring.boundedFaces()[0].twiceSignedArea, 2.0);
 }
+
+TEST(PlanarGraph, OutlineComesFirstEvenThroughACutVertex) {
+  // Two unit squares touching at one corner (a figure eight), nodes numbered so that the plain walk
+  // would meet a square's inside first.
+  PlanarGraph g;
+  const int a1 = g.addNode({2, 1});  // node 0: its first edge (north) has square A on its left
+  const int c = g.addNode({1, 1});   // the cut vertex
+  const int a2 = g.addNode({2, 2}), a3 = g.addNode({1, 2});
+  const int b1 = g.addNode({0, 1}), b2 = g.addNode({0, 0}), b3 = g.addNode({1, 0});
+  for (auto [u, v] : {std::pair{c, a1}, {a1, a2}, {a2, a3}, {a3, c}, {c, b1}, {b1, b2}, {b2, b3}, {b3, c}})
+    g.addEdge(u, v);
+  g.sortRotations();
+  EXPECT_GT(g.faces().front().twiceSignedArea, 0.0) << "the plain walk starts inside a square here";
+  const std::vector<PlanarGraph::Face> faces = g.facesOutlineFirst();
+  ASSERT_EQ(faces.size(), 3u);
+  // Entry 0 is the whole outline, both squares in one walk through the cut vertex.
+  EXPECT_EQ(faces[0].halfEdges.size(), 8u);
+  EXPECT_DOUBLE_EQ(faces[0].twiceSignedArea, -4.0);
+  EXPECT_DOUBLE_EQ(faces[1].twiceSignedArea, 2.0);
+  EXPECT_DOUBLE_EQ(faces[2].twiceSignedArea, 2.0);
+  // Every edge is used exactly twice, once in each direction.
+  std::vector<int> uses(2 * g.edgeCount(), 0);
+  for (const PlanarGraph::Face& f : faces)
+    for (int h : f.halfEdges) ++uses[static_cast<std::size_t>(h)];
+  EXPECT_EQ(uses, std::vector<int>(2 * g.edgeCount(), 1));
+  // Two components: each outline before any inner face.
+  PlanarGraph two = lattice(1, 1);
+  const int o = static_cast<int>(two.nodeCount());
+  for (const Vec2& p : {Vec2(5, 0), Vec2(6, 0), Vec2(6, 1), Vec2(5, 1)}) two.addNode(p);
+  for (int k = 0; k < 4; ++k) two.addEdge(o + k, o + (k + 1) % 4);
+  two.sortRotations();
+  const std::vector<PlanarGraph::Face> both = two.facesOutlineFirst();
+  ASSERT_EQ(both.size(), 4u);
+  EXPECT_LT(both[0].twiceSignedArea, 0.0);
+  EXPECT_LT(both[1].twiceSignedArea, 0.0);
+  EXPECT_GT(both[2].twiceSignedArea, 0.0);
+}
