@@ -313,8 +313,8 @@ std::vector<std::vector<int>> PlanarGraph::chains(const std::function<bool(int)>
   return out;
 }
 
-LineString PlanarGraph::chainLine(const std::vector<int>& chain) const {
-  LineString out;
+std::vector<int> PlanarGraph::chainNodes(const std::vector<int>& chain) const {
+  std::vector<int> out;
   if (chain.empty()) return out;
   const Edge& e0 = edge(chain[0]);
   int n = e0.a;
@@ -322,6 +322,15 @@ LineString PlanarGraph::chainLine(const std::vector<int>& chain) const {
     const Edge& e1 = edge(chain[1]);
     n = (e0.b == e1.a || e0.b == e1.b) ? e0.a : e0.b;
   }
+  out.push_back(n);
+  for (int e : chain) out.push_back(n = otherEnd(e, n));
+  return out;
+}
+
+LineString PlanarGraph::chainLine(const std::vector<int>& chain) const {
+  LineString out;
+  if (chain.empty()) return out;
+  int n = chainNodes(chain).front();
   for (int e : chain) {
     const LineString& line = edge(e).line;
     const bool forward = edge(e).a == n;

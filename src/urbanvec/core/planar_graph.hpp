@@ -96,6 +96,8 @@ class PlanarGraph {
   /// marks nodes a chain must end at, e.g. a change of road class). A cycle of degree-2 nodes is one
   /// chain starting at its lowest edge. Chains come in order of their lowest edge id.
   std::vector<std::vector<int>> chains(const std::function<bool(int)>& keepNode = {}) const;
+  /// The nodes along a chain (one more than its edges), from its first edge's free end.
+  std::vector<int> chainNodes(const std::vector<int>& chain) const;
   /// The polyline of a chain, from its first edge's free end.
   LineString chainLine(const std::vector<int>& chain) const;
 

@@ -1,12 +1,15 @@
 #include "urbanvec/vectorize/roads/road_output.hpp"
 
+#include <algorithm>
 #include <cstdint>
+#include <tuple>
 
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
 
 #include "urbanvec/core/geos.hpp"
+#include "urbanvec/core/planar_graph.hpp"
 #include "urbanvec/vectorize/roads/road_graph_build.hpp"
 
 namespace urbanvec::vectorize {
@@ -66,49 +69,60 @@ RoadNetwork buildRoadNetwork(const RoadGraph& g, double simplifyTolerance) {
     else if (linkType(g, static_cast<int>(i), v.links[0]) != linkType(g, static_cast<int>(i), v.links[1]))
       addEnd(static_cast<int>(i), NetworkNodeKind::Connection);
   }
-  // Walk segments from every end; `used` marks links by (node, slot).
-  std::vector<std::vector<char>> used(n);
-  for (size_t i = 0; i < n; ++i) used[i].assign(g.nodes[i].links.size(), 0);
-  auto markUsed = [&](int a, int b) {
-    const auto& la = g.nodes[a].links;
-    for (size_t k = 0; k < la.size(); ++k)
-      if (la[k] == b) used[a][k] = 1;
-    const auto& lb = g.nodes[b].links;
-    for (size_t k = 0; k < lb.size(); ++k)
-      if (lb[k] == a) used[b][k] = 1;
+  // Segments are the chains of the road graph between ends (core/planar_graph line merging), in the
+  // order a walk from every end would find them: by the (node, link slot) they leave first, then the
+  // closed rings of degree-2 nodes by their lowest node.
+  PlanarGraph planar;
+  for (const RoadNode& v : g.nodes) planar.addNode(v.p);
+  for (size_t i = 0; i < n; ++i)
+    for (int j : g.nodes[i].links)
+      if (static_cast<int>(i) < j) planar.addEdge(static_cast<int>(i), j);
+  auto slotOf = [&](int from, int to) {
+    const auto& links = g.nodes[from].links;
+    return static_cast<int>(std::find(links.begin(), links.end(), to) - links.begin());
   };
-  auto walk = [&](int start, size_t slot) {
+  struct Walk {
+    std::pair<int, int> key;  ///< (start node, link slot); rings: (lowest node, 0) after every path
+    bool ring = false;
+    std::vector<int> nodes;
+  };
+  std::vector<Walk> walks;
+  for (const std::vector<int>& chain : planar.chains([&](int i) { return outId[i] >= 0; })) {
+    Walk w;
+    w.nodes = planar.chainNodes(chain);
+    const int first = w.nodes.front(), last = w.nodes.back();
+    w.ring = outId[first] < 0;
+    if (w.ring) {
+      // A ring starts at its lowest node, towards that node's first link.
+      w.nodes.pop_back();
+      const auto low = std::min_element(w.nodes.begin(), w.nodes.end());
+      std::rotate(w.nodes.begin(), low, w.nodes.end());
+      if (w.nodes.size() > 1 && w.nodes[1] != g.nodes[w.nodes[0]].links[0])
+        std::reverse(w.nodes.begin() + 1, w.nodes.end());
+      w.nodes.push_back(w.nodes.front());
+      w.key = {w.nodes.front(), 0};
+    } else {
+      const std::pair<int, int> forward{first, slotOf(first, w.nodes[1])};
+      const std::pair<int, int> backward{last, slotOf(last, w.nodes[w.nodes.size() - 2])};
+      if (backward < forward) std::reverse(w.nodes.begin(), w.nodes.end());
+      w.key = std::min(forward, backward);
+    }
+    walks.push_back(std::move(w));
+  }
+  std::sort(walks.begin(), walks.end(),
+            [](const Walk& a, const Walk& b) { return std::tie(a.ring, a.key) < std::tie(b.ring, b.key); });
+  for (const Walk& w : walks) {
+    const int start = w.nodes.front();
+    if (w.ring) addEnd(start, NetworkNodeKind::Road);
     NetworkSegment seg;
-    seg.points.push_back(g.nodes[start].p);
-    const NodeType cls = linkType(g, start, g.nodes[start].links[slot]);
+    for (int i : w.nodes) seg.points.push_back(g.nodes[i].p);
+    const NodeType cls = linkType(g, start, w.nodes[1]);
     seg.roadClass = cls == NodeType::Primary     ? RoadClass::Primary
                     : cls == NodeType::Perimeter ? RoadClass::Perimeter
                                                  : RoadClass::Secondary;
-    int prev = start, cur = g.nodes[start].links[slot];
-    markUsed(prev, cur);
-    while (true) {
-      seg.points.push_back(g.nodes[cur].p);
-      if (outId[cur] >= 0) break;
-      const auto& l = g.nodes[cur].links;
-      const int next = l[0] == prev ? l[1] : l[0];
-      prev = cur;
-      cur = next;
-      markUsed(prev, cur);
-    }
     seg.fromNode = outId[start];
-    seg.toNode = outId[cur];
+    seg.toNode = outId[w.nodes.back()];
     net.segments.push_back(std::move(seg));
-  };
-  for (size_t i = 0; i < n; ++i) {
-    if (outId[i] < 0) continue;
-    for (size_t k = 0; k < g.nodes[i].links.size(); ++k)
-      if (!used[i][k]) walk(static_cast<int>(i), k);
-  }
-  // What is left are closed rings of degree-2 nodes of one class: each starts at its lowest node.
-  for (size_t i = 0; i < n; ++i) {
-    if (!g.nodes[i].alive || outId[i] >= 0 || g.nodes[i].links.empty() || used[i][0]) continue;
-    addEnd(static_cast<int>(i), NetworkNodeKind::Road);
-    walk(static_cast<int>(i), 0);
   }
   if (simplifyTolerance > 0 && !net.segments.empty()) {
     std::vector<LineString> lines;

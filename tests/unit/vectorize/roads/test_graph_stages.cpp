@@ -10,6 +10,7 @@
 #include "urbanvec/vectorize/roads/patch_cleaning.hpp"
 #include "urbanvec/vectorize/roads/road_connection.hpp"
 #include "urbanvec/vectorize/roads/road_graph_build.hpp"
+#include "urbanvec/vectorize/roads/road_output.hpp"
 #include "urbanvec/vectorize/roads/road_smoothing.hpp"
 #include "urbanvec/vectorize/roads/straightening.hpp"
 
@@ -607,4 +608,31 @@ TEST(IntersectionSimplification, ZeroDeadEndAngleRemovesNoDeadEnd) {
   IntersectionSimplificationOptions keep;
   keep.deadEndAngle = 0.0;
   EXPECT_EQ(simplifyIntersections(g, keep).deadEndsRemoved, 0u);
+}
+
+TEST(RoadOutput, SegmentsRunBetweenEndsInWalkOrderAndRingsStartAtTheirLowestNode) {
+  RoadGraph g;
+  // A ring of four degree-2 nodes first (ids 0-3, linked 0-3-2-1-0 so that node 0's first link is 3),
+  // then a path 4-5-6 whose node 6 is an intersection with two dead ends 7 and 8.
+  for (const Vec2& p : {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)}) g.addNode(p, NodeType::Secondary);
+  g.link(0, 3);
+  g.link(3, 2);
+  g.link(2, 1);
+  g.link(1, 0);
+  for (const Vec2& p : {Vec2(5, 0), Vec2(6, 0), Vec2(7, 0), Vec2(8, 1), Vec2(8, -1)})
+    g.addNode(p, NodeType::Secondary);
+  g.link(6, 5);  // the chain 4-5-6 is listed from 6 first; its walk still starts at end 4
+  g.link(5, 4);
+  g.link(6, 7);
+  g.link(6, 8);
+  const RoadNetwork net = buildRoadNetwork(g, 0.0);
+  ASSERT_EQ(net.segments.size(), 4u);
+  // Ends are numbered by node id (4, 6, 7, 8), then the ring's start node.
+  EXPECT_EQ(net.segments[0].points, (LineString{{5, 0}, {6, 0}, {7, 0}}));  // from end 4, its only slot
+  EXPECT_EQ(net.segments[1].points, (LineString{{7, 0}, {8, 1}}));          // from 6, slot 1 (slot 0 used)
+  EXPECT_EQ(net.segments[2].points, (LineString{{7, 0}, {8, -1}}));
+  EXPECT_EQ(net.segments[3].points, (LineString{{0, 0}, {0, 1}, {1, 1}, {1, 0}, {0, 0}}));  // via link 3
+  EXPECT_EQ(net.segments[3].fromNode, net.segments[3].toNode);
+  EXPECT_EQ(net.nodes.size(), 5u);
+  EXPECT_EQ(net.nodes[4].kind, NetworkNodeKind::Road);
 }
