@@ -191,7 +191,6 @@ void AtomicOutput::checkExisting() const {
 }
 
 void AtomicOutput::takeLock() {
-  const fs::path target(path_);
   lockPath_ = (fs::path(workDir_) / ("." + baseName_ + ".lock")).string();
   for (int attempt = 0; attempt < 10; ++attempt) {
     const int fd = ::open(lockPath_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
@@ -293,14 +292,13 @@ void AtomicOutput::commit(const Progress& progress) {
     // A file being replaced is first hard-linked aside, so the rename onto it is one atomic step
     // (no moment without the old or the new file) and a rollback can still bring it back.
     auto keepAside = [&](const fs::path& original) {
-      const fs::path kept = aside / std::to_string(asideCount++);
+      const fs::path kept = aside / std::to_string(asideCount);
       if (fs::is_regular_file(original, ec) && ::link(original.c_str(), kept.c_str()) == 0) {
+        ++asideCount;
         movedAside.emplace_back(original, kept);
         return;
       }
-      fs::rename(original, kept, ec);
-      if (ec) rollBack("cannot move '" + original.string() + "' aside (" + ec.message() + ")");
-      movedAside.emplace_back(original, kept);
+      moveAside(original);  // a folder, or a file system without hard links
     };
     auto isStaged = [&](const std::string& name) {
       return std::find(staged.begin(), staged.end(), name) != staged.end();
