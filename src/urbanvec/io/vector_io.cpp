@@ -331,8 +331,10 @@ std::vector<std::string> sideFiles(const std::string& format, const std::string&
     for (const char* ext : {".shp", ".shx", ".dbf", ".prj", ".cpg"}) out.push_back(stem + ext);
   else if (format == "GML")
     out.push_back(stem + ".xsd");
-  else if (format == "MapInfo File")
-    for (const char* ext : {".tab", ".dat", ".map", ".id", ".mif", ".mid"}) out.push_back(stem + ext);
+  else if (format == "MapInfo File" && lowerExtension(fileName) == ".mif")
+    for (const char* ext : {".mif", ".mid"}) out.push_back(stem + ext);
+  else if (format == "MapInfo File")  // the TAB flavour; a .mif/.mid pair of that name is another file
+    for (const char* ext : {".tab", ".dat", ".map", ".id"}) out.push_back(stem + ext);
   out.erase(std::remove(out.begin(), out.end(), fileName), out.end());
   return out;
 }
