@@ -1,5 +1,6 @@
 // `urbanvec evaluate`: measures a vector city against the truth it was gridded from (issue 2 §3).
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 
@@ -10,6 +11,7 @@
 #include "urbanvec/io/atomic_output.hpp"
 #include "urbanvec/io/crs.hpp"
 #include "urbanvec/io/evaluate_input.hpp"
+#include "urbanvec/io/raster_io.hpp"
 #include "urbanvec/io/vector_io.hpp"
 
 namespace urbanvec {
@@ -71,6 +73,19 @@ app::CommandSpec spec() {
                "Keeps only the result " + n + " matching this attribute filter (as ogr2ogr -where).")
             .isAdvanced());
   }
+  s.options.push_back(option("-landuse", ValueType::String, "<landuse.tif>",
+                             "Land-use grid the truth was rasterised on; it tells which truth blocks can "
+                             "be matched at all (at least -matchable-share of their area on land cells). "
+                             "Default: landuse.tif beside the truth when it exists; 'none' leaves the "
+                             "matchable share out.")
+                          .withRole(Role::InputRaster));
+  s.options.push_back(option("-matchable-share", ValueType::Real, "<ratio>",
+                             "Share of a truth block's area on land cells from which it counts as "
+                             "matchable.")
+                          .byDefault(app::numberText(defaults.matchableLandShare))
+                          .atLeast(0)
+                          .atMost(1)
+                          .isAdvanced());
   s.options.push_back(
       option("-landuse-field", ValueType::String, "<name>",
              "Field of the result parcels holding the land use: a class name or a class code of "
@@ -204,7 +219,29 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
     reportProgress(ctx.progress, 0.17 + 0.04 * (i + 1), "reading");
   }
 
+  // The land-use grid: given, or landuse.tif beside the truth (as gridify writes them).
+  std::string landUsePath;
+  if (args.given("-landuse")) {
+    if (args.str("-landuse") != "none") landUsePath = args.str("-landuse");
+  } else {
+    const std::filesystem::path beside = std::filesystem::path(truthPath).parent_path() / "landuse.tif";
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(beside, ec)) landUsePath = beside.string();
+  }
+  if (!landUsePath.empty()) {
+    io::RasterInfo info;
+    evaluate::LandUseCells cells;
+    cells.codes = io::readRasterBand<std::uint8_t>(landUsePath, "land-use grid", &info);
+    cells.spec = info.spec;
+    if (!info.spec.crsWkt.empty() && io::crsShortName(info.spec.crsWkt) != io::crsShortName(truthCrs))
+      ctx.warn("the land-use grid '" + landUsePath + "' is in " + io::crsShortName(info.spec.crsWkt) +
+               ", the truth in " + io::crsShortName(truthCrs) + "; the matchable block share is absent");
+    else
+      input.landUse = std::move(cells);
+  }
+
   evaluate::EvaluateOptions options;
+  options.matchableLandShare = args.real("-matchable-share");
   options.resultLandUseField = args.str("-landuse-field");
   if (input.result.parcels && input.truth.parcels &&
       input.result.parcels->fieldIndex(options.resultLandUseField) < 0)

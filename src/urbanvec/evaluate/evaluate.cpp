@@ -26,6 +26,19 @@ void checkOptions(const EvaluationInput& input, const EvaluateOptions& options) 
   if (!(options.blockMatchIoU > 0.0 && options.blockMatchIoU <= 1.0))
     throw invalidOption("the block match IoU must be in (0, 1], got " +
                         std::to_string(options.blockMatchIoU));
+  if (!std::is_sorted(options.bendClassEdges.begin(), options.bendClassEdges.end()) ||
+      std::any_of(options.bendClassEdges.begin(), options.bendClassEdges.end(),
+                  [](double e) { return !(e > 0.0 && e < 180.0); }))
+    throw invalidOption("the bend-size class edges must be ascending angles in (0, 180) degrees");
+  if (!(options.sharpBendDegrees >= 0.0 && options.sharpBendDegrees < 180.0))
+    throw invalidOption("the sharp bend angle must be in [0, 180) degrees, got " +
+                        std::to_string(options.sharpBendDegrees));
+  if (!(options.matchableLandShare >= 0.0 && options.matchableLandShare <= 1.0))
+    throw invalidOption("the matchable land share must be in [0, 1], got " +
+                        std::to_string(options.matchableLandShare));
+  if (options.landShareSubsamples < 1 || options.landShareSubsamples > 64)
+    throw invalidOption("the land-share sample count per cell edge must be in [1, 64], got " +
+                        std::to_string(options.landShareSubsamples));
   if (!(options.minTruthBlockCells >= 0.0) || !std::isfinite(options.minTruthBlockCells))
     throw invalidOption("the smallest truth block must be a non-negative number of cells, got " +
                         std::to_string(options.minTruthBlockCells));
@@ -42,6 +55,63 @@ Layer blocksAtLeast(const Layer& blocks, double minArea) {
     if (a >= minArea) kept.features.push_back(f);
   }
   return kept;
+}
+
+bool insideRing(const std::vector<Vec2>& ring, const Vec2& p) {
+  bool inside = false;
+  for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+    const Vec2& a = ring[i];
+    const Vec2& b = ring[j];
+    if ((a.y > p.y) != (b.y > p.y) && p.x < (b.x - a.x) * (p.y - a.y) / (b.y - a.y) + a.x) inside = !inside;
+  }
+  return inside;
+}
+
+bool insidePolygon(const Polygon& polygon, const Vec2& p) {
+  if (polygon.outer.size() < 3 || !insideRing(polygon.outer, p)) return false;
+  for (const auto& hole : polygon.holes)
+    if (hole.size() >= 3 && insideRing(hole, p)) return false;
+  return true;
+}
+
+/// Sample points of the polygon (n x n per cell) and how many of them lie on land cells.
+std::pair<std::size_t, std::size_t> landCounts(const Polygon& polygon, const LandUseCells& cells, int n) {
+  if (polygon.outer.empty()) return {0, 0};
+  double c0 = INFINITY, c1 = -INFINITY, r0 = INFINITY, r1 = -INFINITY;
+  for (const Vec2& w : polygon.outer) {
+    const Vec2 px = cells.spec.transform.worldToPixel(w);
+    c0 = std::min(c0, px.x);
+    c1 = std::max(c1, px.x);
+    r0 = std::min(r0, px.y);
+    r1 = std::max(r1, px.y);
+  }
+  std::size_t total = 0, land = 0;
+  for (int row = static_cast<int>(std::floor(r0)); row <= static_cast<int>(std::floor(r1)); ++row)
+    for (int col = static_cast<int>(std::floor(c0)); col <= static_cast<int>(std::floor(c1)); ++col) {
+      const bool onLand =
+          cells.codes.inside(col, row) && cells.codes.at(col, row) != 2 && cells.codes.at(col, row) != 3;
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          const Vec2 p = cells.spec.transform.pixelToWorld(col + (i + 0.5) / n, row + (j + 0.5) / n);
+          if (!insidePolygon(polygon, p)) continue;
+          ++total;
+          land += onLand;
+        }
+    }
+  return {total, land};
+}
+
+double featureLandShare(const Geometry& geometry, const LandUseCells& cells, int n) {
+  std::size_t total = 0, land = 0;
+  auto add = [&](const Polygon& p) {
+    const auto [t, l] = landCounts(p, cells, n);
+    total += t;
+    land += l;
+  };
+  if (const auto* p = std::get_if<Polygon>(&geometry)) add(*p);
+  if (const auto* m = std::get_if<MultiPolygon>(&geometry))
+    for (const Polygon& p : *m) add(p);
+  return total > 0 ? static_cast<double>(land) / static_cast<double>(total) : 0.0;
 }
 
 double totalLengthKm(const std::vector<LineString>& lines) {
@@ -67,6 +137,8 @@ NetworkSummary summariseNetwork(const std::vector<LineString>& lines, double sna
 RoadReport measureRoads(const EvaluationInput& input, const EvaluateOptions& options,
                         const Progress& progress) {
   RoadReport report;
+  report.bendClassEdges = options.bendClassEdges;
+  report.sharpBendDegrees = options.sharpBendDegrees;
   std::vector<LineString> truthLines, resultLines;
   if (input.truth.roads) {
     std::size_t count = 0;
@@ -74,6 +146,8 @@ RoadReport measureRoads(const EvaluationInput& input, const EvaluateOptions& opt
     report.truthLines = count;
     report.truthLengthKm = totalLengthKm(truthLines);
     report.truthTurningPerKm = turningPerKm(truthLines);
+    report.truthTurningByBend = turningPerKmByBend(truthLines, options.bendClassEdges);
+    report.truthSharpTurningPerKm = turningPerKmByBend(truthLines, {options.sharpBendDegrees})[1];
     report.truthNetwork = summariseNetwork(truthLines, options.networkSnapCells * input.cellSize);
   }
   if (input.result.roads) {
@@ -82,10 +156,14 @@ RoadReport measureRoads(const EvaluationInput& input, const EvaluateOptions& opt
     report.resultLines = count;
     report.resultLengthKm = totalLengthKm(resultLines);
     report.resultTurningPerKm = turningPerKm(resultLines);
+    report.resultTurningByBend = turningPerKmByBend(resultLines, options.bendClassEdges);
+    report.resultSharpTurningPerKm = turningPerKmByBend(resultLines, {options.sharpBendDegrees})[1];
     report.resultNetwork = summariseNetwork(resultLines, options.networkSnapCells * input.cellSize);
   }
   if (report.truthTurningPerKm && report.resultTurningPerKm && *report.truthTurningPerKm > 0.0)
     report.turningRatio = *report.resultTurningPerKm / *report.truthTurningPerKm;
+  if (report.truthSharpTurningPerKm && report.resultSharpTurningPerKm && *report.truthSharpTurningPerKm > 0.0)
+    report.sharpTurningRatio = *report.resultSharpTurningPerKm / *report.truthSharpTurningPerKm;
   if (!truthLines.empty() && !resultLines.empty()) {
     const double spacing = options.sampleSpacingCells * input.cellSize;
     const std::vector<double> there =
@@ -163,6 +241,10 @@ std::optional<Extent> cityExtent(const CityLayers& city) {
   return box;
 }
 
+double landShare(const Polygon& polygon, const LandUseCells& cells, int subsamples) {
+  return featureLandShare(Geometry(polygon), cells, subsamples);
+}
+
 bool extentsOverlap(const Extent& a, const Extent& b) {
   return a.minX <= b.maxX && b.minX <= a.maxX && a.minY <= b.maxY && b.minY <= a.maxY;
 }
@@ -194,6 +276,7 @@ EvaluationReport evaluate(const EvaluationInput& input, const EvaluateOptions& o
   BlockReport& blocks = report.blocks;
   blocks.iouThreshold = options.blockMatchIoU;
   blocks.minTruthBlockCells = options.minTruthBlockCells;
+  blocks.matchableLandShare = options.matchableLandShare;
   if (truthBlocks) {
     blocks.truthCount = truthBlocks->size();
     blocks.truthSmallCount = input.truth.blocks->features.size() - truthBlocks->size();
@@ -217,6 +300,24 @@ EvaluationReport evaluate(const EvaluationInput& input, const EvaluateOptions& o
       blocks.meanBestIoU = iouSum / static_cast<double>(truthBlocks->size());
     }
     const int kindField = countedTruthBlocks->fieldIndex("kind");
+    if (input.landUse) {
+      std::size_t matchable = 0, matchableMatched = 0;
+      for (std::size_t t = 0; t < truthBlocks->size(); ++t) {
+        const Feature& f = countedTruthBlocks->features[truthBlocks->featureIndex(t)];
+        if (kindField >= 0)
+          if (const auto* kind = std::get_if<std::string>(&f.values[kindField]); kind && *kind == "external")
+            continue;
+        if (featureLandShare(f.geometry, *input.landUse, options.landShareSubsamples) <
+            options.matchableLandShare)
+          continue;
+        ++matchable;
+        if (matching->bestIoU[t] >= options.blockMatchIoU) ++matchableMatched;
+      }
+      blocks.matchableTruthCount = matchable;
+      blocks.matchableMatchedCount = matchableMatched;
+      if (matchable > 0)
+        blocks.matchableMatchedShare = static_cast<double>(matchableMatched) / static_cast<double>(matchable);
+    }
     if (kindField >= 0) {
       std::size_t internalCount = 0, internalMatched = 0;
       for (std::size_t t = 0; t < truthBlocks->size(); ++t) {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "urbanvec/core/grid.hpp"
 #include "urbanvec/core/layer.hpp"
 #include "urbanvec/core/progress.hpp"
 
@@ -21,11 +22,20 @@ struct CityLayers {
   std::optional<Layer> parcels;  ///< Polygon or MultiPolygon
 };
 
+/// The land-use grid the truth was rasterised on (landuse.tif codes; 2 and 3 are roads), in the
+/// truth's CRS: it tells which truth blocks a vectorizer can match at all.
+struct LandUseCells {
+  GridSpec spec;
+  Grid<std::uint8_t> codes;
+};
+
 /// Both cities in the same projected CRS in metres.
 struct EvaluationInput {
   CityLayers result;
   CityLayers truth;
   double cellSize = 0.0;  ///< metres per cell of the grid the truth was rasterised on
+  /// When given, the block report adds the matched share among the matchable truth blocks.
+  std::optional<LandUseCells> landUse;
 };
 
 struct EvaluateOptions {
@@ -43,6 +53,17 @@ struct EvaluateOptions {
   /// Truth blocks smaller than this many cells are not counted in the block matching (issue 4:
   /// "truth blocks (area >= 4 cells)"): a block of a cell or two is below what the grid can hold.
   double minTruthBlockCells = 4.0;
+  /// Upper edges of the bend-size classes of the turning breakdown, in degrees, ascending (issue 20:
+  /// < 5, 5-20, 20-45, > 45): each vertex's turn is counted in the class of its own size.
+  std::vector<double> bendClassEdges = {5.0, 20.0, 45.0};
+  /// Turns of at least this many degrees are the "sharp" turning compared by sharpTurningRatio.
+  double sharpBendDegrees = 20.0;
+  /// A truth block can be matched when at least this share (0..1) of its area lies on land cells
+  /// (codes other than roads 2, 3) of the land-use grid: a vector block is the land between curbs,
+  /// close to the union of land cells, so a block mostly under road cells cannot reach the IoU.
+  double matchableLandShare = 0.7;
+  /// Sample points per cell edge when measuring a truth block's share on land cells (n x n per cell).
+  int landShareSubsamples = 4;
   /// Field of the result parcels holding the land use (class name, or class code as in landuse.tif).
   std::string resultLandUseField = "land_use";
   /// Field of the truth parcels holding the land use.
@@ -78,6 +99,15 @@ struct RoadReport {
   std::optional<double> resultTurningPerKm;
   /// result / truth turning per km; absent when either side is absent or the truth never turns.
   std::optional<double> turningRatio;
+  /// EvaluateOptions::bendClassEdges used, and the turning per km in each bend-size class (one more
+  /// entry than edges).
+  std::vector<double> bendClassEdges;
+  std::optional<std::vector<double>> truthTurningByBend;
+  std::optional<std::vector<double>> resultTurningByBend;
+  double sharpBendDegrees = 0.0;                 ///< EvaluateOptions::sharpBendDegrees used
+  std::optional<double> truthSharpTurningPerKm;  ///< turning in bends >= sharpBendDegrees, per km
+  std::optional<double> resultSharpTurningPerKm;
+  std::optional<double> sharpTurningRatio;  ///< result / truth of the above; absent when the truth has none
   std::optional<NetworkSummary> truthNetwork;
   std::optional<NetworkSummary> resultNetwork;
 };
@@ -95,6 +125,12 @@ struct BlockReport {
   std::optional<std::size_t> internalTruthCount;
   std::optional<std::size_t> internalMatchedCount;
   std::optional<double> internalMatchedShare;
+  /// The same over the matchable truth blocks: not `external` and with at least
+  /// EvaluateOptions::matchableLandShare of their area on land cells; absent without the land-use grid.
+  double matchableLandShare = 0.0;
+  std::optional<std::size_t> matchableTruthCount;
+  std::optional<std::size_t> matchableMatchedCount;
+  std::optional<double> matchableMatchedShare;
   std::optional<double> meanBestIoU;              ///< mean over truth blocks of the best IoU (0 when none)
   std::optional<std::size_t> resultInvalidCount;  ///< result blocks failing GEOSisValid
 };
@@ -124,6 +160,10 @@ struct Extent {
 
 /// The box around every coordinate of the layers a city has; nothing when they hold none.
 std::optional<Extent> cityExtent(const CityLayers& city);
+
+/// Share (0..1) of the polygon's area on cells whose code is not a road (2, 3), estimated on n x n
+/// points per cell; points outside the grid count as not on land. 0 for a polygon covering no point.
+double landShare(const Polygon& polygon, const LandUseCells& cells, int subsamples);
 
 /// True when the two boxes share at least a point.
 bool extentsOverlap(const Extent& a, const Extent& b);

@@ -97,6 +97,20 @@ std::string formatReportTable(const EvaluationReport& report, const ReportInputs
   if (!r.turningRatio && r.truthTurningPerKm && r.resultTurningPerKm)
     ratio = "undefined (the truth roads never turn)";
   rows.push_back({"roads: turning ratio result/truth", ratio});
+  if (r.truthTurningByBend || r.resultTurningByBend) {
+    for (std::size_t i = 0; i <= r.bendClassEdges.size(); ++i) {
+      const std::string from = i == 0 ? "0" : format("%g", r.bendClassEdges[i - 1]);
+      const std::string label =
+          i == r.bendClassEdges.size() ? ">=" + from : from + "-" + format("%g", r.bendClassEdges[i]);
+      auto side = [&](const std::optional<std::vector<double>>& v) {
+        return v ? format("%.1f", (*v)[i]) : std::string(kAbsent);
+      };
+      rows.push_back({"roads: turning " + label + " deg truth/result",
+                      side(r.truthTurningByBend) + " / " + side(r.resultTurningByBend) + " deg/km"});
+    }
+    rows.push_back({"roads: turning ratio bends >=" + format("%g", r.sharpBendDegrees) + " deg",
+                    number(r.sharpTurningRatio, "%.3f")});
+  }
   auto network = [](const std::optional<NetworkSummary>& n) {
     if (!n) return std::string("absent");
     char text[96];
@@ -120,6 +134,14 @@ std::string formatReportTable(const EvaluationReport& report, const ReportInputs
       internal += " (" + std::to_string(*b.internalMatchedCount) + " of " +
                   std::to_string(*b.internalTruthCount) + ")";
     rows.push_back({"blocks: matched share, internal", internal});
+  }
+  if (b.matchableTruthCount) {
+    std::string matchable = number(b.matchableMatchedShare, "%.4f");
+    if (b.matchableMatchedShare)
+      matchable += " (" + std::to_string(*b.matchableMatchedCount) + " of " +
+                   std::to_string(*b.matchableTruthCount) + " with >= " + format("%g", b.matchableLandShare) +
+                   " of their area on land)";
+    rows.push_back({"blocks: matched share, matchable", matchable});
   }
   rows.push_back({"blocks: mean best IoU", number(b.meanBestIoU, "%.4f")});
   rows.push_back({"blocks: invalid result geometries", count(b.resultInvalidCount)});
@@ -175,6 +197,13 @@ std::string formatReportJson(const EvaluationReport& report, const ReportInputs&
   roads["truth_turning_deg_per_km"] = orNull(r.truthTurningPerKm);
   roads["result_turning_deg_per_km"] = orNull(r.resultTurningPerKm);
   roads["turning_ratio"] = orNull(r.turningRatio);
+  roads["bend_class_edges_deg"] = r.bendClassEdges;
+  roads["truth_turning_by_bend_deg_per_km"] = orNull(r.truthTurningByBend);
+  roads["result_turning_by_bend_deg_per_km"] = orNull(r.resultTurningByBend);
+  roads["sharp_bend_deg"] = r.sharpBendDegrees;
+  roads["truth_sharp_turning_deg_per_km"] = orNull(r.truthSharpTurningPerKm);
+  roads["result_sharp_turning_deg_per_km"] = orNull(r.resultSharpTurningPerKm);
+  roads["sharp_turning_ratio"] = orNull(r.sharpTurningRatio);
   auto networkJson = [](const std::optional<NetworkSummary>& n) {
     if (!n) return nlohmann::ordered_json();
     nlohmann::ordered_json out;
@@ -197,6 +226,10 @@ std::string formatReportJson(const EvaluationReport& report, const ReportInputs&
   blocks["internal_truth_count"] = orNull(b.internalTruthCount);
   blocks["internal_matched_count"] = orNull(b.internalMatchedCount);
   blocks["internal_matched_share"] = orNull(b.internalMatchedShare);
+  blocks["matchable_land_share"] = b.matchableLandShare;
+  blocks["matchable_truth_count"] = orNull(b.matchableTruthCount);
+  blocks["matchable_matched_count"] = orNull(b.matchableMatchedCount);
+  blocks["matchable_matched_share"] = orNull(b.matchableMatchedShare);
   blocks["mean_best_iou"] = orNull(b.meanBestIoU);
   blocks["result_invalid_count"] = orNull(b.resultInvalidCount);
   j["blocks"] = blocks;

@@ -175,19 +175,39 @@ DistanceSummary summariseDistances(const std::vector<double>& distances, double 
   return s;
 }
 
-double turningDegrees(const LineString& line) {
-  double total = 0.0;
+std::vector<double> vertexTurns(const LineString& line) {
+  std::vector<double> turns;
   Vec2 previous;
   bool havePrevious = false;
   for (std::size_t i = 1; i < line.size(); ++i) {
     const Vec2 direction = line[i] - line[i - 1];
     if (direction.x == 0.0 && direction.y == 0.0) continue;
     if (havePrevious)
-      total += std::atan2(std::abs(cross(previous, direction)), dot(previous, direction)) * kDegreesPerRadian;
+      turns.push_back(std::atan2(std::abs(cross(previous, direction)), dot(previous, direction)) *
+                      kDegreesPerRadian);
     previous = direction;
     havePrevious = true;
   }
+  return turns;
+}
+
+double turningDegrees(const LineString& line) {
+  double total = 0.0;
+  for (double t : vertexTurns(line)) total += t;
   return total;
+}
+
+std::vector<double> turningPerKmByBend(const std::vector<LineString>& lines,
+                                       const std::vector<double>& edges) {
+  std::vector<double> degrees(edges.size() + 1, 0.0);
+  double metres = 0.0;
+  for (const LineString& line : lines) {
+    for (double t : vertexTurns(line))
+      degrees[static_cast<std::size_t>(std::upper_bound(edges.begin(), edges.end(), t) - edges.begin())] += t;
+    metres += length(line);
+  }
+  for (double& d : degrees) d = metres > 0.0 ? d / (metres / 1000.0) : 0.0;
+  return degrees;
 }
 
 double turningPerKm(const std::vector<LineString>& lines) {

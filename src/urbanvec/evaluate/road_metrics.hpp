@@ -37,4 +37,13 @@ double turningDegrees(const LineString& line);
 /// Degrees of turning per km of lines whose coordinates are in metres; 0 for lines of no length.
 double turningPerKm(const std::vector<LineString>& lines);
 
+/// The absolute turning angle at each interior vertex, in degrees (repeated points skipped), in order.
+std::vector<double> vertexTurns(const LineString& line);
+
+/// Turning per km split by the size of each vertex's turn (issue 20): entry i holds the degrees of the
+/// turns of at least edges[i-1] and less than edges[i] degrees (entry 0 from 0, the last entry
+/// without an upper edge), per km of all the lines; `edges` ascending. All zero for lines of no length.
+std::vector<double> turningPerKmByBend(const std::vector<LineString>& lines,
+                                       const std::vector<double>& edges);
+
 }  // namespace urbanvec::evaluate

@@ -399,3 +399,101 @@ TEST(Evaluate, ThousandsOfBlocksStayFast) {
 }
 
 }  // namespace urbanvec::evaluate
+
+namespace urbanvec::evaluate {
+namespace {
+
+/// A polyline from the origin that walks `step` metres, then turns by each angle (degrees, left) and
+/// walks again.
+LineString turningLine(const std::vector<double>& turns, double step) {
+  LineString line{{0, 0}};
+  double heading = 0.0;
+  line.push_back({step, 0});
+  for (double t : turns) {
+    heading += t * M_PI / 180.0;
+    const Vec2 last = line.back();
+    line.push_back({last.x + step * std::cos(heading), last.y + step * std::sin(heading)});
+  }
+  return line;
+}
+
+}  // namespace
+
+TEST(RoadTurning, TurningPerKmIsSplitByTheSizeOfEachBend) {
+  // 1 km in 10 pieces of 100 m with turns of 3, 6, 10, 21, 30 and 90 degrees.
+  const LineString line = turningLine({3, 6, 10, 21, 30, 90, 0, 0, 0}, 100.0);
+  ASSERT_NEAR(length(line), 1000.0, 1e-9);
+  const std::vector<double> byBend = turningPerKmByBend({line}, {5, 20, 45});
+  ASSERT_EQ(byBend.size(), 4u);
+  EXPECT_NEAR(byBend[0], 3.0, 1e-9);
+  EXPECT_NEAR(byBend[1], 16.0, 1e-9);
+  EXPECT_NEAR(byBend[2], 51.0, 1e-9);
+  EXPECT_NEAR(byBend[3], 90.0, 1e-9);
+  EXPECT_NEAR(byBend[0] + byBend[1] + byBend[2] + byBend[3], turningPerKm({line}), 1e-9);
+}
+
+TEST(RoadTurning, ReportGivesBendClassesAndTheSharpTurningRatio) {
+  EvaluationInput input;
+  input.cellSize = 10.0;
+  // Truth: one 40-degree bend over 1 km. Result: the same bend drawn as a 25- and a 15-degree bend,
+  // a zigzag of 10-degree jogs (below the sharp class) and a 60-degree hook and back.
+  input.truth.roads = roadLayer({{turningLine({40, 0, 0, 0, 0, 0, 0, 0, 0}, 100.0), "secondary"}});
+  input.result.roads = roadLayer({{turningLine({25, 15, 10, -10, 60, -60, 0, 0, 0}, 100.0), "secondary"}});
+  const EvaluationReport report = evaluate(input);
+  const RoadReport& r = report.roads;
+  ASSERT_TRUE(r.truthTurningByBend && r.resultTurningByBend);
+  EXPECT_NEAR((*r.truthTurningByBend)[2], 40.0, 1e-9);
+  EXPECT_NEAR((*r.resultTurningByBend)[1], 35.0, 1e-9);
+  EXPECT_NEAR((*r.resultTurningByBend)[2], 25.0, 1e-9);
+  EXPECT_NEAR((*r.resultTurningByBend)[3], 120.0, 1e-9);
+  ASSERT_TRUE(r.sharpTurningRatio);
+  EXPECT_NEAR(*r.sharpTurningRatio, 145.0 / 40.0, 1e-9);
+  EXPECT_NEAR(*r.turningRatio, 180.0 / 40.0, 1e-9);
+  const auto json = nlohmann::json::parse(formatReportJson(report, {}));
+  EXPECT_NEAR(json["roads"]["result_turning_by_bend_deg_per_km"][3].get<double>(), 120.0, 1e-9);
+  EXPECT_NEAR(json["roads"]["sharp_turning_ratio"].get<double>(), 145.0 / 40.0, 1e-9);
+  const std::string table = formatReportTable(report, {});
+  const std::size_t row = table.find("roads: turning >=45 deg truth/result");
+  ASSERT_NE(row, std::string::npos) << table;
+  const std::string line = table.substr(row, table.find('\n', row) - row);
+  EXPECT_NE(line.find(" 0.0 / 120.0 deg/km"), std::string::npos) << line;
+}
+
+TEST(BlockMatching, MatchableShareLeavesOutBlocksMostlyOnRoadCells) {
+  // A 10 x 4 grid of 10 m cells, north-up from (0, 40): columns 0-3 land, column 4 road, columns 5-9
+  // road too in rows 0-1, land in rows 2-3.
+  LandUseCells cells;
+  cells.spec.width = 10;
+  cells.spec.height = 4;
+  cells.spec.transform.c = {0, 10, 0, 40, 0, -10};
+  cells.codes = Grid<std::uint8_t>(10, 4, 4);
+  for (int row = 0; row < 4; ++row) cells.codes.at(4, row) = 2;
+  for (int row = 0; row < 2; ++row)
+    for (int col = 5; col < 10; ++col) cells.codes.at(col, row) = 2;
+  EXPECT_NEAR(landShare(box(0, 0, 40, 40), cells, 4), 1.0, 1e-12);
+  EXPECT_NEAR(landShare(box(50, 0, 100, 40), cells, 4), 0.5, 1e-12);
+  EXPECT_NEAR(landShare(box(30, 0, 50, 40), cells, 4), 0.5, 1e-12);  // half on the road column
+
+  EvaluationInput input;
+  input.cellSize = 10.0;
+  input.landUse = cells;
+  input.truth.blocks = polygonLayer("blocks", {{box(0, 0, 40, 40), "a"}, {box(50, 0, 100, 40), "b"}});
+  input.result.blocks = polygonLayer("blocks", {{box(0, 0, 40, 40), "a"}});
+  const EvaluationReport report = evaluate(input);
+  ASSERT_TRUE(report.blocks.matchedShare && report.blocks.matchableMatchedShare);
+  EXPECT_DOUBLE_EQ(*report.blocks.matchedShare, 0.5);
+  EXPECT_EQ(*report.blocks.matchableTruthCount, 1u);
+  EXPECT_EQ(*report.blocks.matchableMatchedCount, 1u);
+  EXPECT_DOUBLE_EQ(*report.blocks.matchableMatchedShare, 1.0);
+
+  EvaluateOptions loose;
+  loose.matchableLandShare = 0.5;  // now the half-road block counts and is not matched
+  const EvaluationReport both = evaluate(input, loose);
+  EXPECT_EQ(*both.blocks.matchableTruthCount, 2u);
+  EXPECT_DOUBLE_EQ(*both.blocks.matchableMatchedShare, 0.5);
+
+  input.landUse.reset();
+  EXPECT_FALSE(evaluate(input).blocks.matchableMatchedShare.has_value()) << "absent without the grid";
+}
+
+}  // namespace urbanvec::evaluate
