@@ -133,6 +133,24 @@ app::CommandSpec spec() {
                   .withUnit("cells")
                   .atLeast(0)
                   .isAdvanced());
+  o.push_back(option("-no-through-roads", ValueType::Flag, "",
+                     "Skip B7: intersections at the crossing of their through roads, straight roads drawn "
+                     "straight (docs/vectorize.md, \"Through roads and straight roads\").")
+                  .isAdvanced());
+  o.push_back(option("-through-angle", ValueType::Real, "<degrees>",
+                     "Two arms of an intersection continue each other when within this of opposite (B7).")
+                  .byDefault(app::numberText(d.throughRoads.pairAngle))
+                  .withUnit("degrees")
+                  .atLeast(0)
+                  .atMost(90)
+                  .isAdvanced());
+  o.push_back(option("-straight-slack", ValueType::Real, "<cells>",
+                     "A road is straight when its cells lie within the band of a digital straight line "
+                     "plus this (B7).")
+                  .byDefault(app::numberText(d.throughRoads.slack))
+                  .withUnit("cells")
+                  .atLeast(0)
+                  .isAdvanced());
   o.push_back(option("-straight-angle", ValueType::Real, "<degrees>",
                      "Road pairs straighter than this re-straighten their intersection (B2).")
                   .byDefault(app::numberText(d.roadSmoothing.straightAngle))
@@ -220,6 +238,10 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   options.roadSmoothing.straightAngle = args.real("-straight-angle");
   options.roadSmoothing.reach = args.real("-smooth-reach");
   options.curves.reach = options.roadSmoothing.reach;
+  options.throughRoads.reach = options.roadSmoothing.reach;
+  options.throughRoads.enabled = !args.flag("-no-through-roads");
+  options.throughRoads.pairAngle = args.real("-through-angle");
+  options.throughRoads.slack = args.real("-straight-slack");
   options.cycles.maxCycleNodes = static_cast<int>(args.integer("-cycle-nodes"));
   options.intersections.deadEndAngle = args.real("-dead-end-angle");
   options.cleanIntersectionPatches = !args.flag("-no-patch-cleaning");

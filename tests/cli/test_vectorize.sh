@@ -91,14 +91,15 @@ expect_eq "$(md5sum "$WORK/$(basename "$g").gpkg")" "$before" "untouched output"
 run_cmd vectorize -progress lines -timings -debug-stages "$WORK/stages" "$g/landuse.tif" "$WORK/p.gpkg"
 expect_status 0
 for stage in "raw blocks" "patch cleaning" "road graph" "perimeters" "parcels" "intersection straightening" \
-  "road smoothing" "primary/secondary connection" "cycle removal" "intersection simplification" "curve smoothing"; do
+  "road smoothing" "primary/secondary connection" "cycle removal" "intersection simplification" "curve smoothing" \
+  "through roads"; do
   case "$OUT" in *"PROGRESS "*" $stage"*) ;; *) fail "no progress line for stage '$stage'";; esac
 done
 expect_stdout_contains "PROGRESS 100"
 expect_stdout_contains "peak_MB"
 layers=$(ogrinfo -ro -q "$WORK/stages/stages.gpkg" | grep -c "_links (Line String)" || true)
-# One links/nodes pair per graph stage: A4, A4.8, B1-B6.
-expect_eq "$layers" "8" "debug stage layers"
+# One links/nodes pair per graph stage: A4, A4.8, B1-B7.
+expect_eq "$layers" "9" "debug stage layers"
 expect_no_temp "$WORK"
 
 finish

@@ -241,6 +241,19 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
     const CurveSmoothingStats s = smoothCurves(graph, curves, p);
     return counts(s.bends, " bends, ", s.nodesInserted, " nodes inserted, ", s.passes, " passes");
   });
+  run("B7", "through roads", 0.03, true, [&](const Progress& p) {
+    ThroughRoadOptions through = options.throughRoads;
+    if (options.keepRoadCellsCovered) {
+      through.cells = &result.cells;
+      through.coverRadius = options.curves.coverRadius;
+    }
+    const ThroughRoadStats s = straightenThroughRoads(graph, through, p);
+    if (!options.throughRoads.enabled) return std::string("skipped");
+    return counts(s.intersections, " intersections, ", s.pairs, " through pairs, ", s.nodesPlaced,
+                  " nodes placed, ", s.outOfReach, " out of reach, ", s.approaches, " approaches, ",
+                  s.straightChains, " straight roads, ", s.crossingsAvoided,
+                  " moves left out for crossings, ", s.uncoveringAvoided, " for uncovered cells");
+  });
   run("F", "road output", 0.05, false, [&](const Progress& p) {
     std::size_t noded = 0;
     if (options.planarize) {

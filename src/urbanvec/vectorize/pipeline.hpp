@@ -22,6 +22,7 @@
 #include "urbanvec/vectorize/roads/road_network.hpp"
 #include "urbanvec/vectorize/roads/road_smoothing.hpp"
 #include "urbanvec/vectorize/roads/straightening.hpp"
+#include "urbanvec/vectorize/roads/through_roads.hpp"
 #include "urbanvec/vectorize/vectorize_input.hpp"
 
 namespace urbanvec::vectorize {
@@ -46,6 +47,7 @@ struct VectorizeOptions {
   bool keepDevelopedCycles = true;
   IntersectionSimplificationOptions intersections;  ///< B5
   CurveSmoothingOptions curves;                     ///< B6
+  ThroughRoadOptions throughRoads;                  ///< B7 (issue 20, beyond the documents)
   /// [INFERENCE, beyond the documents] B2 and B6 cut back averaging moves, and B5 leaves out
   /// contractions, that would uncover road cells (RoadSmoothingOptions::coverCells,
   /// IntersectionSimplificationOptions::coverCells); false = the documents' rules (smoothing bounded

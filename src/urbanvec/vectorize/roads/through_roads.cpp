@@ -1,0 +1,406 @@
+// Stage B7 (issue 20, extending spec §3 B1 and its "optional improvement", after B6): see
+// through_roads.hpp. Arms and lines are fitted to the nodes' placements (the cells they were made
+// for), not to their smoothed positions, so the lines are those of the cells; intersections are
+// visited in node order and every step is sequential, so the result does not depend on -threads.
+#include "urbanvec/vectorize/roads/through_roads.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "urbanvec/vectorize/roads/road_network.hpp"
+#include "urbanvec/vectorize/roads/straightening.hpp"
+#include "urbanvec/vectorize/vectorize_input.hpp"
+
+namespace urbanvec::vectorize {
+
+double digitalLineBand(const Vec2& d) {
+  return 0.5 * (std::fabs(d.x) + std::fabs(d.y));
+}
+
+namespace {
+
+bool consistentWithLine(const std::vector<Vec2>& placements, const Vec2& centre, const Vec2& direction,
+                        double slack) {
+  const double band = digitalLineBand(direction) + slack;
+  for (const Vec2& p : placements)
+    if (std::fabs(cross(direction, p - centre)) > band) return false;
+  return true;
+}
+
+/// True when a road cell's centre lies within r of p.
+bool nearRoadCell(const Grid<std::uint8_t>& cells, const Vec2& p, double r) {
+  bool found = false;
+  forEachCellNearSegment(cells.width, cells.height, p, p, r,
+                         [&](int col, int row, double) { found = found || isRoadCode(cells.at(col, row)); });
+  return found;
+}
+
+/// How far a node of this type may lie from its placement and still be on its cells (pw).
+double placementReach(NodeType type, double reach) {
+  return reach + (type == NodeType::Primary ? std::sqrt(0.5) : 0.0);
+}
+
+bool isRoad(const RoadNode& n) {
+  return n.alive && n.type != NodeType::Perimeter;
+}
+
+bool isChainEnd(const RoadGraph& graph, int i) {
+  const RoadNode& n = graph.nodes[i];
+  return n.intersection || n.links.size() != 2;
+}
+
+bool segmentsCross(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+  const auto side = [](const Vec2& o, const Vec2& p, const Vec2& q) { return cross(p - o, q - o); };
+  const double d1 = side(c, d, a), d2 = side(c, d, b), d3 = side(a, b, c), d4 = side(a, b, d);
+  return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
+}
+
+/// Where the stage may move nodes: the node index for neighbourhood queries and the longest link.
+struct Surroundings {
+  const NodeIndex& index;
+  double longestLink = 0.0;  ///< padded by how far nodes may move
+  double coverQuery = 0.0;   ///< radius around a cell holding an end of every link within coverRadius
+};
+
+/// The road cells within `radius` of the links of the moved nodes (cell indices, sorted).
+std::vector<std::int64_t> cellsNearLinks(const RoadGraph& graph, const Grid<std::uint8_t>& cells,
+                                         const std::vector<int>& moved, double radius) {
+  std::vector<std::int64_t> out;
+  for (int m : moved)
+    for (int q : graph.nodes[m].links)
+      if (graph.nodes[m].type != NodeType::Perimeter && graph.nodes[q].type != NodeType::Perimeter)
+        forEachCellNearSegment(cells.width, cells.height, graph.nodes[m].p, graph.nodes[q].p, radius,
+                               [&](int col, int row, double) {
+                                 if (isRoadCode(cells.at(col, row)))
+                                   out.push_back(static_cast<std::int64_t>(row) * cells.width + col);
+                               });
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+/// True when one of the cells is farther than `radius` from every link.
+bool anyUncovered(const RoadGraph& graph, const Grid<std::uint8_t>& cells, const Surroundings& around,
+                  const std::vector<std::int64_t>& candidates, double radius) {
+  for (std::int64_t k : candidates) {
+    const Vec2 c(static_cast<double>(k % cells.width) + 0.5,
+                 cells.height - static_cast<double>(k / cells.width) - 0.5);
+    bool covered = false;
+    for (int a : around.index.within(c, around.coverQuery)) {
+      if (graph.nodes[a].type == NodeType::Perimeter) continue;  // perimeter links are no roads
+      for (int b : graph.nodes[a].links)
+        if (graph.nodes[b].type != NodeType::Perimeter &&
+            distanceToSegment(c, graph.nodes[a].p, graph.nodes[b].p) <= radius) {
+          covered = true;
+          break;
+        }
+      if (covered) break;
+    }
+    if (!covered) return true;
+  }
+  return false;
+}
+
+bool movedLinksCross(const RoadGraph& graph, const Surroundings& around, const std::vector<int>& moved);
+
+/// True when the moves just made must be undone: a moved link crosses another, or a road cell the
+/// moved nodes' links covered before (`covered`) is no longer covered.
+bool rejectMoves(const RoadGraph& graph, const ThroughRoadOptions& options, const Surroundings& around,
+                 const std::vector<int>& moved, const std::vector<std::int64_t>& covered,
+                 ThroughRoadStats& stats) {
+  if (movedLinksCross(graph, around, moved)) {
+    ++stats.crossingsAvoided;
+    return true;
+  }
+  if (options.cells && anyUncovered(graph, *options.cells, around, covered, options.coverRadius)) {
+    ++stats.uncoveringAvoided;
+    return true;
+  }
+  return false;
+}
+
+/// True when a link of a moved node crosses another link (links sharing a node do not cross).
+bool movedLinksCross(const RoadGraph& graph, const Surroundings& around, const std::vector<int>& moved) {
+  for (int m : moved) {
+    const Vec2 a = graph.nodes[m].p;
+    for (int q : graph.nodes[m].links) {
+      const Vec2 b = graph.nodes[q].p;
+      for (int c : around.index.within(a, distance(a, b) + around.longestLink + 1.0))
+        for (int d : graph.nodes[c].links) {
+          if (c == m || c == q || d == m || d == q) continue;
+          if (segmentsCross(a, b, graph.nodes[c].p, graph.nodes[d].p)) return true;
+        }
+    }
+  }
+  return false;
+}
+
+/// Puts the positions of `nodes` back.
+void restore(RoadGraph& graph, const std::vector<int>& nodes, const std::vector<Vec2>& positions) {
+  for (std::size_t k = 0; k < nodes.size(); ++k) graph.nodes[nodes[k]].p = positions[k];
+}
+
+/// One road leaving an intersection: its nodes within the window (the last may be the next
+/// intersection or dead end, which is fitted but not moved) and the line fitted to the placements of
+/// those beyond the inner radius.
+struct Arm {
+  std::vector<int> nodes;
+  std::size_t movable = 0;  ///< nodes[0, movable) may be moved
+  std::vector<Vec2> fitPlacements;
+  bool fitted = false;
+  Vec2 centre, direction;  ///< direction points away from the intersection
+};
+
+Arm buildArm(const RoadGraph& graph, int at, int next, const ThroughRoadOptions& options) {
+  Arm arm;
+  const Vec2 origin = graph.nodes[at].placed;
+  for (int k : followChain(graph, at, next)) {
+    const RoadNode& n = graph.nodes[k];
+    if (k == at || !isRoad(n) || distance(n.placed, origin) > options.window) break;
+    arm.nodes.push_back(k);
+    if (isChainEnd(graph, k)) break;
+    arm.movable = arm.nodes.size();
+  }
+  std::vector<Vec2>& placements = arm.fitPlacements;
+  for (int k : arm.nodes)
+    if (distance(graph.nodes[k].placed, origin) >= options.innerRadius)
+      placements.push_back(graph.nodes[k].placed);
+  if (placements.size() < 2) return arm;
+  fitLine(placements, arm.centre, arm.direction);
+  if (dot(arm.direction, arm.centre - origin) < 0) arm.direction = arm.direction * -1.0;
+  arm.fitted = consistentWithLine(placements, arm.centre, arm.direction, options.slack);
+  return arm;
+}
+
+/// The least-squares point of lines (centre, unit direction); false when they are (nearly) parallel.
+bool leastSquaresCrossing(const std::vector<std::pair<Vec2, Vec2>>& lines, Vec2& out) {
+  double a = 0, b = 0, c = 0, rx = 0, ry = 0;
+  for (const auto& [centre, d] : lines) {
+    // (I - d d^T) p = (I - d d^T) centre, summed.
+    const double m00 = 1 - d.x * d.x, m01 = -d.x * d.y, m11 = 1 - d.y * d.y;
+    a += m00;
+    b += m01;
+    c += m11;
+    rx += m00 * centre.x + m01 * centre.y;
+    ry += m01 * centre.x + m11 * centre.y;
+  }
+  const double det = a * c - b * b;
+  if (det < 0.04 * static_cast<double>(lines.size() * lines.size())) return false;  // ~11.5 degrees
+  out = Vec2((c * rx - b * ry) / det, (a * ry - b * rx) / det);
+  return true;
+}
+
+void placeIntersection(RoadGraph& graph, int at, const ThroughRoadOptions& options,
+                       const Surroundings& around, ThroughRoadStats& stats) {
+  RoadNode& node = graph.nodes[at];
+  const std::vector<std::int32_t> links = node.links;
+  std::vector<Arm> arms;
+  for (int next : links) arms.push_back(buildArm(graph, at, next, options));
+  // Pairs of fitted arms close to opposite, straightest first; each arm in one pair at most, and the
+  // pair only when the placements of both arms are consistent with one straight line.
+  const double pairCos = -std::cos(options.pairAngle * M_PI / 180.0);
+  struct Pair {
+    double cosine;
+    std::size_t a, b;
+    Vec2 centre, direction;
+  };
+  std::vector<Pair> candidates;
+  for (std::size_t a = 0; a < arms.size(); ++a)
+    for (std::size_t b = a + 1; b < arms.size(); ++b) {
+      if (!arms[a].fitted || !arms[b].fitted) continue;
+      const double c = dot(arms[a].direction, arms[b].direction);
+      if (c > pairCos) continue;
+      candidates.push_back({c, a, b, {}, {}});
+    }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Pair& x, const Pair& y) { return x.cosine < y.cosine; });
+  std::vector<char> paired(arms.size(), 0);
+  std::vector<Pair> pairs;
+  for (Pair p : candidates) {
+    if (paired[p.a] || paired[p.b]) continue;
+    std::vector<Vec2> placements = arms[p.a].fitPlacements;
+    placements.insert(placements.end(), arms[p.b].fitPlacements.begin(), arms[p.b].fitPlacements.end());
+    fitLine(placements, p.centre, p.direction);
+    if (!consistentWithLine(placements, p.centre, p.direction, options.slack)) continue;
+    paired[p.a] = paired[p.b] = 1;
+    pairs.push_back(p);
+  }
+  stats.pairs += pairs.size();
+  if (pairs.empty()) return;
+
+  // The node: the crossing of the pair lines; with one pair, the point of its line nearest (least
+  // squares) to the other arms' lines, so the through road stays straight and the stems meet it.
+  Vec2 target = node.p;
+  if (pairs.size() >= 2) {
+    std::vector<std::pair<Vec2, Vec2>> lines;
+    for (const Pair& p : pairs) lines.push_back({p.centre, p.direction});
+    if (!leastSquaresCrossing(lines, target)) return;
+  } else {
+    const Pair& p = pairs[0];
+    double num = 0, den = 0;
+    for (std::size_t s = 0; s < arms.size(); ++s) {
+      if (paired[s] || !arms[s].fitted) continue;
+      const Vec2 n(-arms[s].direction.y, arms[s].direction.x);
+      const double off = dot(n, p.centre - arms[s].centre), along = dot(n, p.direction);
+      num += off * along;
+      den += along * along;
+    }
+    const double t = den > 0.04 ? -num / den : dot(node.p - p.centre, p.direction);
+    target = p.centre + p.direction * t;
+  }
+  // Bounded by the cells: the node stays within reach of a cell of the crossing (its own placement or
+  // one of its arms' nodes), as smoothing keeps nodes within reach of theirs.
+  bool inReach = false;
+  if (options.cells) {
+    inReach = nearRoadCell(*options.cells, target, options.reach);
+  } else {
+    inReach = distance(target, node.placed) <= smoothingShiftLimit(node.type, options.reach);
+    for (const Arm& arm : arms)
+      for (int k : arm.nodes)
+        inReach = inReach || distance(target, graph.nodes[k].placed) <=
+                                 smoothingShiftLimit(graph.nodes[k].type, options.reach);
+  }
+  if (!inReach) {
+    ++stats.outOfReach;
+    return;
+  }
+  // Every node that may move: the crossing and its arms' movable nodes (for the coverage check).
+  std::vector<int> mayMove{at};
+  for (const Arm& arm : arms)
+    mayMove.insert(mayMove.end(), arm.nodes.begin(), arm.nodes.begin() + arm.movable);
+  const std::vector<std::int64_t> covered =
+      options.cells ? cellsNearLinks(graph, *options.cells, mayMove, options.coverRadius)
+                    : std::vector<std::int64_t>();
+  std::vector<int> moved{at};
+  std::vector<Vec2> before{node.p};
+  node.p = target;
+
+  // Approaches: each arm's nodes near the node go onto the straight line from the node to the arm's
+  // first node left in place (its next end, or the first node beyond the window), so a through road
+  // runs straight and a stem meets the crossing at its own angle without a hook. When a node would
+  // leave the reach of the cells, the straight piece is shortened (anchored one node nearer) until
+  // all fit. Positions along the line never go back, so the arm cannot fold.
+  std::vector<Vec2> onLine;
+  for (Arm& arm : arms) {
+    if (arm.movable == 0) continue;
+    const std::vector<int> chain = followChain(graph, at, arm.nodes[0]);
+    for (std::size_t count = arm.movable; count >= 1; --count) {
+      const int anchor = chain[std::min(count, chain.size() - 1)];
+      if (anchor == at) break;
+      const Vec2 ab = graph.nodes[anchor].p - target;
+      const double len2 = dot(ab, ab);
+      if (len2 == 0) break;
+      onLine.clear();
+      double along = 0.0;
+      bool inReach = true;
+      for (std::size_t m = 0; m < count && inReach; ++m) {
+        const RoadNode& n = graph.nodes[arm.nodes[m]];
+        along = std::clamp(dot(n.p - target, ab) / len2, along, 1.0);
+        onLine.push_back(target + ab * along);
+        inReach = options.cells
+                      ? distance(onLine.back(), n.placed) <= placementReach(n.type, options.reach) &&
+                            nearRoadCell(*options.cells, onLine.back(), options.reach)
+                      : distance(onLine.back(), n.placed) <= smoothingShiftLimit(n.type, options.reach);
+      }
+      if (!inReach) continue;
+      for (std::size_t m = 0; m < count; ++m) {
+        moved.push_back(arm.nodes[m]);
+        before.push_back(graph.nodes[arm.nodes[m]].p);
+        graph.nodes[arm.nodes[m]].p = onLine[m];
+      }
+      ++stats.approaches;
+      break;
+    }
+  }
+  // A move that would make roads cross (the output has no crossings but at nodes) or uncover a road
+  // cell is not made.
+  if (rejectMoves(graph, options, around, moved, covered, stats)) {
+    restore(graph, moved, before);
+    return;
+  }
+  ++stats.nodesPlaced;
+}
+
+}  // namespace
+
+bool consistentWithSegment(const std::vector<Vec2>& placements, const Vec2& a, const Vec2& b, double slack) {
+  const Vec2 ab = b - a;
+  const double len = length(ab);
+  if (len == 0) return false;
+  return consistentWithLine(placements, a, ab / len, slack);
+}
+
+ThroughRoadStats straightenThroughRoads(RoadGraph& graph, const ThroughRoadOptions& options,
+                                        const Progress& progress) {
+  ThroughRoadStats stats;
+  if (!options.enabled) {
+    reportProgress(progress, 1.0, "through roads");
+    return stats;
+  }
+  updateIntersectionFlags(graph);
+  const std::size_t n = graph.nodes.size();
+  const NodeIndex index(graph, 4.0);
+  Surroundings around{index};
+  for (const RoadNode& node : graph.nodes)
+    if (node.alive)
+      for (int q : node.links)
+        around.longestLink = std::max(around.longestLink, distance(node.p, graph.nodes[q].p));
+  // Moves only shorten or keep links near the window's size; a link within coverRadius of a cell has
+  // an end within coverRadius + its length of it.
+  around.coverQuery = around.longestLink + 2.0 * options.window + options.coverRadius;
+  // Nodes move by a few pw at most; the neighbourhood queries look that much farther.
+  around.longestLink += 2.0 * (options.reach + options.window);
+  const Progress placing = subProgress(progress, 0.0, 0.6);
+  ProgressTicker ticker(placing, "through roads", n);
+  for (std::size_t i = 0; i < n; ++i, ticker.tick()) {
+    const RoadNode& node = graph.nodes[i];
+    if (!isRoad(node) || !node.intersection || node.links.size() < 3) continue;
+    ++stats.intersections;
+    placeIntersection(graph, static_cast<int>(i), options, around, stats);
+  }
+  ticker.finish();
+
+  // Straight roads: every chain between two ends whose placements lie in the band of the straight
+  // line joining its (placed) ends is drawn on that line.
+  std::vector<Vec2> placements;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!isRoad(graph.nodes[i]) || !isChainEnd(graph, static_cast<int>(i))) continue;
+    const std::vector<std::int32_t> links = graph.nodes[i].links;
+    for (int next : links) {
+      const std::vector<int> chain = followChain(graph, static_cast<int>(i), next);
+      const int end = chain.back();
+      if (end <= static_cast<int>(i) || chain.size() < 2) continue;  // each chain once; loops skipped
+      bool road = true;
+      placements.assign(1, graph.nodes[i].placed);
+      for (int k : chain) {
+        road = road && isRoad(graph.nodes[k]);
+        placements.push_back(graph.nodes[k].placed);
+      }
+      const Vec2 a = graph.nodes[i].p, b = graph.nodes[end].p;
+      if (!road || !consistentWithSegment(placements, a, b, options.slack)) continue;
+      const Vec2 ab = b - a;
+      double along = 0.0;
+      const std::vector<int> moved(chain.begin(), chain.end() - 1);
+      const std::vector<std::int64_t> covered =
+          options.cells ? cellsNearLinks(graph, *options.cells, moved, options.coverRadius)
+                        : std::vector<std::int64_t>();
+      std::vector<Vec2> before;
+      for (int k : moved) {
+        RoadNode& node = graph.nodes[k];
+        before.push_back(node.p);
+        along = std::clamp(dot(node.p - a, ab) / dot(ab, ab), along, 1.0);
+        node.p = a + ab * along;
+      }
+      if (rejectMoves(graph, options, around, moved, covered, stats)) {
+        restore(graph, moved, before);
+        continue;
+      }
+      ++stats.straightChains;
+    }
+  }
+  graph.sortLinksClockwise();
+  reportProgress(progress, 1.0, "through roads");
+  return stats;
+}
+
+}  // namespace urbanvec::vectorize

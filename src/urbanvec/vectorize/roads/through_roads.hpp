@@ -1,0 +1,76 @@
+// Stage B7 — through roads and straight roads (issue 20; extends spec §3 B1 "Intersection
+// straightening" with its "optional improvement" and §9.2 Q9, and runs after B6 "Curve smoothing"):
+// at each intersection the arms that continue each other (nearly collinear) are paired and the node
+// goes to the least-squares crossing of the paired arms' fitted lines, bounded by the cells as
+// smoothing is (-smooth-reach); each arm's approach is put on its line, so a straight street stays
+// straight through a crossing and a T-junction's stem meets the through road at its own angle. Then
+// every road between two intersections or dead ends whose cells are consistent with a straight line
+// becomes that line.
+//
+// The straightness rule: the cells of a 4-connected road along a straight line at angle θ have
+// their centres (a primary's 2×2 windows their corners) within (|cos θ| + |sin θ|) / 2 pw of the
+// line — half a cell for a street along the grid, 0.71 pw for a diagonal staircase. A chain of nodes
+// (or an arm's approach) counts as straight when every node's placement (the cell it was made for)
+// lies within that band plus `slack` of the line; a curve whose cells leave the band stays a curve.
+#pragma once
+
+#include <cstddef>
+
+#include "urbanvec/core/grid.hpp"
+#include "urbanvec/core/progress.hpp"
+#include "urbanvec/vectorize/roads/road_graph.hpp"
+#include "urbanvec/vectorize/roads/road_smoothing.hpp"
+
+namespace urbanvec::vectorize {
+
+struct ThroughRoadOptions {
+  /// Off = the B1-B6 graph as it is (the documents' road correction).
+  bool enabled = true;
+  /// Nodes at most this far from an intersection (pw) make its arm's approach (B1's window).
+  double window = 5.0;
+  /// Nodes nearer than this to the intersection (pw) are moved with their arm but not fitted: their
+  /// cells belong to the crossing, whose cluster of cells bulges around the node.
+  double innerRadius = 1.5;
+  /// Two arms continue each other when their directions are within this many degrees of opposite.
+  double pairAngle = 25.0;
+  /// How far an intersection or approach node may end up from the road cells, in pw, as smoothing
+  /// (-smooth-reach, kDefaultSmoothingReach): a moved node must lie within this of a road cell's
+  /// centre of `cells` and an approach node within this (a primary's 0.71 pw more) of its own
+  /// placement; without `cells`, within smoothingShiftLimit of a placement of the crossing's nodes.
+  /// A move beyond it is not made.
+  double reach = kDefaultSmoothingReach;
+  /// The land-use codes after A3 (internal frame: cell (c, r) centred at (c + 0.5, H - r - 0.5)).
+  /// With them, moves are also undone when they would leave a road cell that the moved nodes' links
+  /// covered within `coverRadius` farther than that from every link (as B2, B6 and B5 do).
+  const Grid<std::uint8_t>* cells = nullptr;
+  double coverRadius = 1.5;
+  /// Placements may lie this far (pw) outside the band of a digital straight line
+  /// ((|cos θ| + |sin θ|) / 2) and still count as straight. Measured (docs/vectorize.md, "Through
+  /// roads and straight roads"): 0.25 halves the turning left on the synthetic diagonal grids but
+  /// moves Bubeneč's p95 distance out by 12 % and costs Monaco a matched block; 0 keeps every distance
+  /// within a few % of the B6 output.
+  double slack = 0.0;
+};
+
+struct ThroughRoadStats {
+  std::size_t intersections = 0;      ///< intersections examined
+  std::size_t pairs = 0;              ///< pairs of arms found to continue each other
+  std::size_t nodesPlaced = 0;        ///< intersections moved to their arms' crossing
+  std::size_t outOfReach = 0;         ///< intersections whose crossing lay beyond reach of their cells
+  std::size_t approaches = 0;         ///< arm approaches put on their line
+  std::size_t straightChains = 0;     ///< roads between intersections/dead ends drawn as a straight line
+  std::size_t crossingsAvoided = 0;   ///< moves not made because a moved link would cross another
+  std::size_t uncoveringAvoided = 0;  ///< moves not made because they would uncover a road cell
+};
+
+/// Half-width of the band holding the cell placements of a road along direction `d` (unit), in pw:
+/// (|d.x| + |d.y|) / 2.
+double digitalLineBand(const Vec2& d);
+
+/// True when every placement lies within digitalLineBand(direction of ab) + slack of the line ab.
+bool consistentWithSegment(const std::vector<Vec2>& placements, const Vec2& a, const Vec2& b, double slack);
+
+ThroughRoadStats straightenThroughRoads(RoadGraph& graph, const ThroughRoadOptions& options,
+                                        const Progress& progress = {});
+
+}  // namespace urbanvec::vectorize

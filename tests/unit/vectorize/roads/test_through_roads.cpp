@@ -1,0 +1,139 @@
+// Stage B7 (through roads and straight roads, issue 20) on hand-made graphs with known answers.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "urbanvec/vectorize/roads/through_roads.hpp"
+
+using namespace urbanvec;
+using namespace urbanvec::vectorize;
+
+namespace {
+
+/// Links the nodes in order and returns their ids.
+std::vector<int> path(RoadGraph& g, const std::vector<Vec2>& points, int from = -1) {
+  std::vector<int> ids;
+  int prev = from;
+  for (const Vec2& p : points) {
+    const int id = g.addNode(p, NodeType::Secondary);
+    if (prev >= 0) g.link(prev, id);
+    ids.push_back(id);
+    prev = id;
+  }
+  return ids;
+}
+
+/// Largest turn (degrees) along the nodes' current positions.
+double largestTurn(const RoadGraph& g, const std::vector<int>& ids) {
+  double worst = 0;
+  for (std::size_t i = 1; i + 1 < ids.size(); ++i) {
+    const Vec2 a = g.nodes[ids[i]].p - g.nodes[ids[i - 1]].p, b = g.nodes[ids[i + 1]].p - g.nodes[ids[i]].p;
+    worst = std::max(worst, std::atan2(std::fabs(cross(a, b)), dot(a, b)) * 180 / M_PI);
+  }
+  return worst;
+}
+
+}  // namespace
+
+TEST(ThroughRoads, DigitalLineBandIsHalfACellAlongTheGridAndSeventyOneHundredthsDiagonally) {
+  EXPECT_DOUBLE_EQ(digitalLineBand({1, 0}), 0.5);
+  EXPECT_NEAR(digitalLineBand({std::sqrt(0.5), std::sqrt(0.5)}), std::sqrt(0.5), 1e-12);
+  // A 45-degree staircase of cell centres lies within the band of the diagonal; a cell off it not.
+  EXPECT_TRUE(consistentWithSegment({{0.5, 0.5}, {1.5, 0.5}, {1.5, 1.5}, {2.5, 1.5}, {2.5, 2.5}}, {0.5, 0.5},
+                                    {2.5, 2.5}, 0.0));
+  EXPECT_FALSE(consistentWithSegment({{0.5, 0.5}, {1.5, -0.5}, {2.5, 2.5}}, {0.5, 0.5}, {2.5, 2.5}, 0.25));
+}
+
+TEST(ThroughRoads, CrossingWithJoggedNodeBecomesTwoStraightRoadsThroughTheCrossing) {
+  // An east-west and a north-south street on cell centres crossing at (0, 0); the crossing node and
+  // its four neighbours were left jogged by smoothing (their placements, the cells, are exact).
+  RoadGraph g;
+  const int centre = g.addNode({0, 0}, NodeType::Secondary);
+  std::vector<std::vector<int>> arms;
+  for (const Vec2& d : {Vec2(1, 0), Vec2(-1, 0), Vec2(0, 1), Vec2(0, -1)}) {
+    std::vector<Vec2> points;
+    for (int k = 1; k <= 8; ++k) points.push_back(d * static_cast<double>(k));
+    arms.push_back(path(g, points, centre));
+  }
+  g.nodes[centre].p = {0.6, 0.4};
+  g.nodes[arms[0][0]].p = {1.1, 0.45};
+  g.nodes[arms[1][0]].p = {-0.9, 0.3};
+  g.nodes[arms[2][0]].p = {0.5, 1.1};
+  g.nodes[arms[3][0]].p = {0.4, -1.0};
+  const ThroughRoadStats s = straightenThroughRoads(g, {});
+  EXPECT_EQ(s.pairs, 2u);
+  EXPECT_EQ(s.nodesPlaced, 1u);
+  EXPECT_NEAR(g.nodes[centre].p.x, 0.0, 1e-9);
+  EXPECT_NEAR(g.nodes[centre].p.y, 0.0, 1e-9);
+  for (int k : arms[0]) EXPECT_NEAR(g.nodes[k].p.y, 0.0, 1e-9);
+  for (int k : arms[1]) EXPECT_NEAR(g.nodes[k].p.y, 0.0, 1e-9);
+  for (int k : arms[2]) EXPECT_NEAR(g.nodes[k].p.x, 0.0, 1e-9);
+  for (int k : arms[3]) EXPECT_NEAR(g.nodes[k].p.x, 0.0, 1e-9);
+
+  // Off, the graph stays as B6 left it.
+  RoadGraph untouched = g;
+  untouched.nodes[centre].p = {0.6, 0.4};
+  ThroughRoadOptions off;
+  off.enabled = false;
+  straightenThroughRoads(untouched, off);
+  EXPECT_DOUBLE_EQ(untouched.nodes[centre].p.x, 0.6);
+}
+
+TEST(ThroughRoads, DiagonalStaircaseBetweenDeadEndsBecomesItsLine) {
+  // A 4-connected staircase at 45 degrees through cell centres, smoothing having left it as it is.
+  std::vector<Vec2> points{{0.5, 0.5}};
+  for (int k = 0; k < 10; ++k) {
+    points.push_back(points.back() + Vec2(1, 0));
+    points.push_back(points.back() + Vec2(0, 1));
+  }
+  RoadGraph g;
+  const std::vector<int> ids = path(g, points);
+  EXPECT_GT(largestTurn(g, ids), 89.0);
+  const ThroughRoadStats s = straightenThroughRoads(g, {});
+  EXPECT_EQ(s.straightChains, 1u);
+  EXPECT_LT(largestTurn(g, ids), 1e-6);
+  for (int k : ids) EXPECT_NEAR(g.nodes[k].p.x - g.nodes[k].p.y, 0.0, 1e-9);
+}
+
+TEST(ThroughRoads, CurveBeyondTheBandStaysACurve) {
+  // A quarter circle of radius 10 pw: its middle lies 2.9 pw off the chord, far outside the band.
+  std::vector<Vec2> points;
+  for (int k = 0; k <= 16; ++k) {
+    const double a = M_PI / 2 * k / 16;
+    points.push_back({10 * std::cos(a), 10 * std::sin(a)});
+  }
+  RoadGraph g;
+  const std::vector<int> ids = path(g, points);
+  const ThroughRoadStats s = straightenThroughRoads(g, {});
+  EXPECT_EQ(s.straightChains, 0u);
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    EXPECT_DOUBLE_EQ(g.nodes[ids[k]].p.x, points[k].x);
+    EXPECT_DOUBLE_EQ(g.nodes[ids[k]].p.y, points[k].y);
+  }
+}
+
+TEST(ThroughRoads, TJunctionStemMeetsTheThroughRoadAtItsOwnAngleWithoutAHook) {
+  // A through road along y = 0 and a stem leaving (0, 0) at 60 degrees whose first node hooks
+  // towards the east, as the cells of a junction pull it.
+  RoadGraph g;
+  const int centre = g.addNode({0.3, 0.2}, NodeType::Secondary);
+  std::vector<Vec2> east, west, stem;
+  for (int k = 1; k <= 8; ++k) {
+    east.push_back({static_cast<double>(k), 0});
+    west.push_back({-static_cast<double>(k), 0});
+    stem.push_back(Vec2(0.5, std::sqrt(0.75)) * static_cast<double>(k));
+  }
+  stem[0] = {1.0, 0.2};
+  path(g, east, centre);
+  path(g, west, centre);
+  std::vector<int> stemIds{centre};
+  for (int k : path(g, stem, centre)) stemIds.push_back(k);
+  EXPECT_GT(largestTurn(g, stemIds), 40.0);
+  const ThroughRoadStats s = straightenThroughRoads(g, {});
+  EXPECT_EQ(s.pairs, 1u);
+  EXPECT_EQ(s.nodesPlaced, 1u);
+  // The node is on the through road where the stem's line meets it, and the stem runs straight.
+  EXPECT_NEAR(g.nodes[centre].p.y, 0.0, 1e-9);
+  EXPECT_NEAR(g.nodes[centre].p.x, 0.0, 1e-9);
+  EXPECT_LT(largestTurn(g, stemIds), 1.0);
+}
