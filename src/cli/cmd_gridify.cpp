@@ -129,6 +129,27 @@ app::CommandSpec spec() {
                   .withUnit("cells")
                   .atLeast(0.71)
                   .isAdvanced());
+  const gridify::UntaggedLandOptions untagged;
+  o.push_back(option("-no-infer-use", ValueType::Flag, "",
+                     "Leave land no land-use polygon covers unused (default: blocks inside the street "
+                     "network take the use of their buildings, else of their streets, else -default-use)."));
+  o.push_back(option("-default-use", ValueType::Choice, "<class>",
+                     "Use of an untagged block inside the street network with no building and no telling "
+                     "street; unused leaves it empty.")
+                  .oneOf({"residential", "commercial", "industrial", "park", "reserved", "unused"})
+                  .byDefault(std::string(landUseName(untagged.defaultUse))));
+  o.push_back(
+      option("-untagged-share", ValueType::Real, "<ratio>",
+             "A block is untagged when at most this share of its cells lies under a land-use polygon.")
+          .byDefault(app::numberText(untagged.maxTaggedShare))
+          .atLeast(0)
+          .atMost(1)
+          .isAdvanced());
+  o.push_back(option("-street-use", ValueType::String, "<highway=class,...>",
+                     "Street classes and the use of the untagged blocks they bound (at least half of a "
+                     "block's street length decides).")
+                  .byDefault("residential=residential,living_street=residential")
+                  .isAdvanced());
   for (const app::OptionSpec& r : app::rasterOutputOptions()) o.push_back(r);
   s.examples = {"urbanvec gridify -tr 8 monaco.osm.pbf monaco_grid",
                 "urbanvec gridify -tr 6 -t_srs EPSG:32633 -roads-layer streets -buildings-layer buildings "
@@ -183,6 +204,22 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   options.truthCurbPrimaryCells = args.real("-truth-curb-primary");
   options.truthCurbSecondaryCells = args.real("-truth-curb-secondary");
   options.truthRoadReachCells = args.real("-truth-road-reach");
+  options.untagged.enabled = !args.flag("-no-infer-use");
+  options.untagged.defaultUse = *parseLandUse(args.str("-default-use"));
+  options.untagged.maxTaggedShare = args.real("-untagged-share");
+  options.untagged.streetUses.clear();
+  {
+    std::stringstream list(args.str("-street-use"));
+    std::string item;
+    while (std::getline(list, item, ',')) {
+      const std::size_t eq = item.find('=');
+      const std::optional<LandUse> use =
+          eq == std::string::npos ? std::nullopt : parseLandUse(item.substr(eq + 1));
+      if (!use || eq == 0)
+        throw invalidOption("-street-use takes highway=class pairs separated by commas, got '" + item + "'");
+      options.untagged.streetUses.push_back({item.substr(0, eq), *use});
+    }
+  }
 
   app::CitySourceOptions source;
   if (args.given("-a_srs")) source.assignedCrs = args.str("-a_srs");
@@ -248,6 +285,12 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
              << options.cellSize << " m in " << crsName << "; " << result.roadsRasterized << " roads, "
              << result.parcels.size() << " parcels, population " << static_cast<long long>(population + 0.5)
              << "; " << seconds << " s\n";
+    if (options.untagged.enabled)
+      *ctx.out << "untagged land: " << result.inferredCells << " cells in "
+               << result.untaggedByBuildings + result.untaggedByStreets + result.untaggedByDefault
+               << " blocks took a use (" << result.untaggedByBuildings << " by their buildings, "
+               << result.untaggedByStreets << " by their streets, " << result.untaggedByDefault
+               << " by -default-use)\n";
   }
 }
 

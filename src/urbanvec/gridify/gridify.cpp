@@ -127,6 +127,71 @@ Layer makeGridInfo(const GridSpec& spec, double cellSize, const std::string& crs
   return info;
 }
 
+/// Issue 20: the blocks (faces of the network) with no land-use polygon take the use their buildings,
+/// bounding streets or the default suggest (untagged_land.hpp) on their cells that nothing else
+/// claims.
+void inferUntaggedLand(const CityData& city, const Frame& frame, const std::vector<TruthBlock>& blocks,
+                       const RoadRaster& roads, const Grid<std::uint8_t>& wet,
+                       const Grid<std::uint8_t>& tagged, const std::vector<Vec2>& buildingPoint,
+                       const std::vector<LandUse>& buildingUse, const GridifyOptions& options,
+                       Grid<std::uint8_t>& base, GridifyResult& result) {
+  if (!options.untagged.enabled || blocks.empty()) return;
+  Grid<std::int32_t> blockOf(frame.width, frame.height, 0);
+  std::vector<BlockEvidence> evidence(blocks.size());
+  std::vector<std::vector<Cell>> blockCells(blocks.size());
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    evidence[b].external = blocks[b].external;
+    for (const Cell& c : frame.cells(MultiPolygon{blocks[b].shape})) {
+      if (roads.classes.at(c.first, c.second) || wet.at(c.first, c.second)) continue;
+      blockOf.at(c.first, c.second) = static_cast<std::int32_t>(b + 1);
+      blockCells[b].push_back(c);
+      ++evidence[b].cells;
+      evidence[b].taggedCells += tagged.at(c.first, c.second);
+    }
+  }
+  for (std::size_t i = 0; i < city.buildings.size(); ++i) {
+    const Cell c = frame.cellAt(buildingPoint[i]);
+    if (c.first < 0 || !blockOf.at(c.first, c.second)) continue;
+    evidence[blockOf.at(c.first, c.second) - 1].buildingArea[buildingUse[i]] +=
+        area(city.buildings[i].footprint);
+  }
+  // Bounding streets: every half cell along a rasterized centreline, the blocks in the 3x3 cells
+  // around it get that piece of street.
+  std::vector<std::int32_t> seen;
+  for (std::size_t r = 0; r < city.roads.size(); ++r) {
+    if (!roads.rasterized[r]) continue;
+    const LineString line = frame.toPixel(city.roads[r].centreline);
+    for (std::size_t k = 1; k < line.size(); ++k) {
+      const double len = distance(line[k - 1], line[k]);
+      const int steps = std::max(1, static_cast<int>(std::ceil(len / 0.5)));
+      for (int s = 0; s < steps; ++s) {
+        const Vec2 p = line[k - 1] + (line[k] - line[k - 1]) * ((s + 0.5) / steps);
+        const int col = static_cast<int>(std::floor(p.x)), row = static_cast<int>(std::floor(p.y));
+        seen.clear();
+        for (int dr = -1; dr <= 1; ++dr)
+          for (int dc = -1; dc <= 1; ++dc)
+            if (blockOf.inside(col + dc, row + dr))
+              if (const std::int32_t b = blockOf.at(col + dc, row + dr))
+                if (std::find(seen.begin(), seen.end(), b) == seen.end()) seen.push_back(b);
+        for (std::int32_t b : seen)
+          evidence[b - 1].streetLength[city.roads[r].sourceClass] += len / steps * frame.cell;
+      }
+    }
+  }
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    const auto [use, rule] = inferUntaggedUse(evidence[b], options.untagged);
+    if (!use) continue;
+    result.untaggedByBuildings += rule == UntaggedRule::Buildings;
+    result.untaggedByStreets += rule == UntaggedRule::Streets;
+    result.untaggedByDefault += rule == UntaggedRule::Default;
+    for (const Cell& c : blockCells[b])
+      if (base.at(c.first, c.second) == static_cast<std::uint8_t>(LandUse::Unused)) {
+        base.at(c.first, c.second) = static_cast<std::uint8_t>(*use);
+        ++result.inferredCells;
+      }
+  }
+}
+
 }  // namespace
 
 Extent cityExtent(const CityData& city) {
@@ -186,6 +251,7 @@ GridifyResult gridify(const CityData& city, const GridifyOptions& options, const
   // Base land use: areas, the largest first so that smaller areas inside them win.
   Grid<std::uint8_t> base(spec.width, spec.height, static_cast<std::uint8_t>(LandUse::Unused));
   Grid<std::uint8_t> wet(spec.width, spec.height, 0);
+  Grid<std::uint8_t> tagged(spec.width, spec.height, 0);  // cells under a land-use polygon
   std::vector<std::size_t> order(city.areas.size());
   std::iota(order.begin(), order.end(), 0);
   std::vector<double> areaSize(city.areas.size());
@@ -199,8 +265,11 @@ GridifyResult gridify(const CityData& city, const GridifyOptions& options, const
       waterShapes.push_back(a.shape);
       continue;
     }
-    if (a.use == LandUse::Unused || isRoad(a.use)) continue;
-    for (const Cell& c : frame.cells(a.shape)) base.at(c.first, c.second) = static_cast<std::uint8_t>(a.use);
+    if (isRoad(a.use)) continue;
+    for (const Cell& c : frame.cells(a.shape)) {
+      tagged.at(c.first, c.second) = 1;
+      if (a.use != LandUse::Unused) base.at(c.first, c.second) = static_cast<std::uint8_t>(a.use);
+    }
   }
   reportProgress(progress, 0.1, "water");
 
@@ -291,6 +360,8 @@ GridifyResult gridify(const CityData& city, const GridifyOptions& options, const
   std::vector<TruthBlock> blocks = roadBlocks(rasterizedLines, box, waterClipped, kMinBlockArea);
   const std::vector<TruthBlock> truthBlocks =
       curbBlocks(blocks, rasterizedLines, curbOffsets, box, kMinBlockArea);
+  inferUntaggedLand(city, frame, blocks, roads, wet, tagged, buildingPoint, buildingUse, options, base,
+                    result);
   reportProgress(progress, 0.6, "parcels");
 
   // Parcels: given ones clipped to the grid, or a tessellation of the blocks.

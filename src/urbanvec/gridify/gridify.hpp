@@ -10,6 +10,7 @@
 #include "urbanvec/core/layer.hpp"
 #include "urbanvec/core/progress.hpp"
 #include "urbanvec/gridify/city_data.hpp"
+#include "urbanvec/gridify/untagged_land.hpp"
 
 namespace urbanvec::gridify {
 
@@ -37,6 +38,8 @@ struct GridifyOptions {
   /// the roads the grid holds (a centreline on its own cells is within 0.71 cell; merged carriageways
   /// and cleared cells leave pieces the grid does not hold).
   double truthRoadReachCells = 1.0;
+  /// The use of land no land-use polygon covers (issue 20; untagged_land.hpp).
+  UntaggedLandOptions untagged;
 };
 
 struct ParcelRecord {
@@ -58,6 +61,12 @@ struct GridifyResult {
   // Figures for the report.
   std::size_t roadsRasterized = 0;
   std::size_t roadsMerged = 0;  ///< primary corner cells or secondary cells removed to keep widths exact
+  /// Untagged blocks inside the urban extent given a use by their buildings, streets, or the default,
+  /// and the cells that took it.
+  std::size_t untaggedByBuildings = 0;
+  std::size_t untaggedByStreets = 0;
+  std::size_t untaggedByDefault = 0;
+  std::size_t inferredCells = 0;
 };
 
 /// Builds the grid. Throws InvalidOption when cellSize <= 0 or the extent holds no cell, InvalidInput
