@@ -54,7 +54,7 @@ expect_status 2
 expect_stderr_contains "-street-use takes highway=class pairs"
 
 # 2. Monaco without land-use polygons, on the frame of the sample grid (which -no-infer-use reproduces).
-src="$SAMPLE_DIR/../sample_data/sources/monaco.osm.pbf"
+src="$SAMPLE_DIR/sources/monaco.osm.pbf"
 ogr2ogr -f GPKG "$WORK/m.gpkg" "$src" -sql "SELECT highway, name FROM lines WHERE highway IS NOT NULL" \
   -nln roads -nlt LINESTRING
 ogr2ogr -update -f GPKG "$WORK/m.gpkg" "$src" -sql "SELECT building FROM multipolygons WHERE building IS NOT NULL" \
