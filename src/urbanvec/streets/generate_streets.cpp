@@ -1,0 +1,205 @@
+// The streets pipeline (spec chen-streets.md §1 stages one and two, §10 graph and blocks).
+#include "urbanvec/streets/generate_streets.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "urbanvec/core/error.hpp"
+#include "urbanvec/core/geos.hpp"
+#include "urbanvec/core/planar_graph.hpp"
+#include "urbanvec/streets/polygon_index.hpp"
+
+namespace urbanvec::streets {
+namespace {
+
+/// The level of the traced street nearest to a point (for the noded pieces, which lose it).
+class LevelLookup {
+ public:
+  LevelLookup(const std::vector<Street>& streets, const Vec2& lo, const Vec2& hi, double cell)
+      : origin_(lo), cell_(cell) {
+    nx_ = static_cast<int>((hi.x - lo.x) / cell) + 1;
+    ny_ = static_cast<int>((hi.y - lo.y) / cell) + 1;
+    cells_.assign(static_cast<std::size_t>(nx_) * ny_, {});
+    for (std::size_t s = 0; s < streets.size(); ++s)
+      for (std::size_t i = 0; i + 1 < streets[s].line.size(); ++i) {
+        const Vec2 m = (streets[s].line[i] + streets[s].line[i + 1]) * 0.5;
+        cells_[index(m)].push_back({streets[s].line[i], streets[s].line[i + 1], streets[s].level});
+      }
+  }
+  StreetLevel at(const Vec2& p) const {
+    const int ci = std::clamp(static_cast<int>((p.x - origin_.x) / cell_), 0, nx_ - 1);
+    const int cj = std::clamp(static_cast<int>((p.y - origin_.y) / cell_), 0, ny_ - 1);
+    double best = std::numeric_limits<double>::infinity();
+    StreetLevel level = StreetLevel::Minor;
+    for (int j = std::max(0, cj - 1); j <= std::min(ny_ - 1, cj + 1); ++j)
+      for (int i = std::max(0, ci - 1); i <= std::min(nx_ - 1, ci + 1); ++i)
+        for (const Seg& s : cells_[static_cast<std::size_t>(j) * nx_ + i]) {
+          const double d = distanceToSegment(p, s.a, s.b);
+          // Ties (a major and a minor street through the same point) go to the major street.
+          if (d < best - 1e-9 || (d <= best + 1e-9 && s.level == StreetLevel::Major))
+            best = d, level = s.level;
+        }
+    return level;
+  }
+
+ private:
+  struct Seg {
+    Vec2 a, b;
+    StreetLevel level;
+  };
+  std::size_t index(const Vec2& p) const {
+    const int i = std::clamp(static_cast<int>((p.x - origin_.x) / cell_), 0, nx_ - 1);
+    const int j = std::clamp(static_cast<int>((p.y - origin_.y) / cell_), 0, ny_ - 1);
+    return static_cast<std::size_t>(j) * nx_ + i;
+  }
+  Vec2 origin_;
+  double cell_;
+  int nx_ = 0, ny_ = 0;
+  std::vector<std::vector<Seg>> cells_;
+};
+
+void boxOf(const MultiPolygon& polygons, Vec2& lo, Vec2& hi) {
+  lo = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  hi = lo * -1.0;
+  for (const Polygon& p : polygons)
+    for (const Vec2& v : p.outer) {
+      lo.x = std::min(lo.x, v.x), lo.y = std::min(lo.y, v.y);
+      hi.x = std::max(hi.x, v.x), hi.y = std::max(hi.y, v.y);
+    }
+}
+
+}  // namespace
+
+StreetNetwork generateStreets(const StreetsInput& input, const StreetsOptions& options,
+                              const Progress& progress) {
+  if (input.design.size() > options.maxDesignElements)
+    throw invalidInput("the design has " + std::to_string(input.design.size()) + " elements; at most " +
+                       std::to_string(options.maxDesignElements) + " are accepted");
+  if (input.design.empty() && input.fieldLines.empty() && !input.dem)
+    throw invalidInput(
+        "the street design is empty: give design elements (-design), roads or lines for the field "
+        "(-roads, -field-lines) or a DEM (-dem)");
+  if (input.boundary.empty()) throw invalidInput("the boundary holds no polygon");
+  const TraceOptions& t = options.trace;
+  if (!(t.majorDsep > 0.0) || !(t.minorDsep > 0.0))
+    throw invalidOption("-dsep-major and -dsep-minor must be > 0");
+  if (!(t.dtestRatio > 0.0) || t.dtestRatio > 1.0)
+    throw invalidOption("-dtest-ratio " + std::to_string(t.dtestRatio) +
+                        " makes d_test exceed d_sep (it must lie in (0, 1])");
+  const PolygonIndex land(input.boundary);
+  for (const DesignElement& e : input.design)
+    if (!land.contains(e.position))
+      throw invalidInput("design element at (" + std::to_string(e.position.x) + ", " +
+                         std::to_string(e.position.y) + ") lies outside the boundary");
+
+  Vec2 lo, hi;
+  boxOf(input.boundary, lo, hi);
+  const double margin = t.majorDsep;
+  lo = lo - Vec2{margin, margin}, hi = hi + Vec2{margin, margin};
+
+  StreetNetwork net;
+  FieldOptions fo = options.field;
+  if (!(fo.cellSize > 0.0)) fo.cellSize = options.fieldCellRatio * t.minorDsep;
+  std::vector<DesignElement> elements = input.design;
+  const double sigma = options.polylineDecayRatio * t.majorDsep;
+  const std::vector<DesignElement> fromLines =
+      polylineElements(input.fieldLines, options.polylineSpacingRatio * t.majorDsep, 1.0 / (sigma * sigma));
+  elements.insert(elements.end(), fromLines.begin(), fromLines.end());
+  net.field =
+      buildField(lo, hi, elements, input.dem ? &*input.dem : nullptr, fo, subProgress(progress, 0.0, 0.2));
+
+  TraceDomain domain;
+  domain.land = input.boundary;
+  domain.water = input.water;
+  domain.parks = input.parks;
+  if (input.densitySpec) {
+    float top = 0.0f;
+    for (float v : input.density.cells)
+      if (std::isfinite(v)) top = std::max(top, v);
+    domain.densitySpec = input.densitySpec;
+    domain.density = input.density;
+    for (float& v : domain.density.cells)
+      v = (std::isfinite(v) && top > 0.0f) ? std::max(0.0f, v / top) : 0.0f;
+  }
+  // Seeds: the design elements (a radial centre is degenerate: start one minor spacing east of it),
+  // then points along the field's polylines every major d_sep, so major roads grow from them.
+  std::vector<Vec2> seeds;
+  for (const DesignElement& e : input.design)
+    seeds.push_back(e.kind == ElementKind::Radial ? e.position + Vec2{t.minorDsep, 0.0} : e.position);
+  for (const LineString& l : input.fieldLines)
+    for (const Vec2& p : densified(l, t.majorDsep)) seeds.push_back(p);
+  std::vector<Street> traced =
+      traceStreets(net.field, domain, seeds, t, &net.stats, subProgress(progress, 0.2, 0.8));
+  net.tracedLines = traced.size();
+
+  // §10: node every crossing (GEOS), merge through degree-2 nodes of the same level.
+  std::vector<LineString> lines;
+  for (const Street& s : traced) lines.push_back(s.line);
+  const PlanarGraph graph = PlanarGraph::fromLines(lines, options.nodingTolerance);
+  reportProgress(progress, 0.85, "noding");
+  const LevelLookup lookup(traced, lo, hi, t.minorDsep);
+  std::vector<StreetLevel> edgeLevel(graph.edgeCount());
+  for (int e = 0; e < static_cast<int>(graph.edgeCount()); ++e) {
+    const LineString& l = graph.edge(e).line;
+    const std::size_t mid = (l.size() - 1) / 2;
+    edgeLevel[static_cast<std::size_t>(e)] = lookup.at((l[mid] + l[mid + 1]) * 0.5);
+  }
+  auto levelChange = [&](int n) {
+    const auto& es = graph.node(n).edges;
+    for (int e : es)
+      if (edgeLevel[static_cast<std::size_t>(e)] != edgeLevel[static_cast<std::size_t>(es.front())])
+        return true;
+    return false;
+  };
+  std::vector<char> endNode(graph.nodeCount(), 0);
+  for (const std::vector<int>& chain : graph.chains(levelChange)) {
+    StreetEdge edge;
+    edge.line = graph.chainLine(chain);
+    edge.level = edgeLevel[static_cast<std::size_t>(chain.front())];
+    const std::vector<int> ends = graph.chainNodes(chain);
+    endNode[static_cast<std::size_t>(ends.front())] = endNode[static_cast<std::size_t>(ends.back())] = 1;
+    net.streets.push_back(std::move(edge));
+  }
+  for (int n = 0; n < static_cast<int>(graph.nodeCount()); ++n)
+    if (endNode[static_cast<std::size_t>(n)]) net.nodes.push_back({graph.node(n).p, graph.degree(n)});
+
+  // Blocks: faces of streets + boundary + coastline, inside the boundary and out of the water.
+  reportProgress(progress, 0.9, "blocks");
+  geos::Context ctx;
+  MultiLineString soup;
+  for (const StreetEdge& e : net.streets) soup.push_back(e.line);
+  for (const MultiPolygon* mp : {&input.boundary, &input.water})
+    for (const Polygon& p : *mp) {
+      soup.push_back(p.outer);
+      for (const Ring& h : p.holes) soup.push_back(h);
+    }
+  const geos::GeomPtr noded =
+      ctx.own(GEOSUnaryUnionPrec_r(ctx.handle(), ctx.multiLineString(soup).get(), options.nodingTolerance),
+              "noding the block outlines");
+  const GEOSGeometry* parts[] = {noded.get()};
+  const geos::GeomPtr faces = ctx.own(GEOSPolygonize_r(ctx.handle(), parts, 1), "polygonizing the blocks");
+  const PolygonIndex water(input.water), parks(input.parks);
+  for (Polygon& face : ctx.toPolygons(faces.get())) {
+    const geos::GeomPtr g = ctx.polygon(face);
+    const geos::GeomPtr inner = ctx.own(GEOSPointOnSurface_r(ctx.handle(), g.get()), "a block's inner point");
+    double x = 0, y = 0;
+    GEOSGeomGetX_r(ctx.handle(), inner.get(), &x);
+    GEOSGeomGetY_r(ctx.handle(), inner.get(), &y);
+    const Vec2 p{x, y};
+    if (!land.contains(p) || water.contains(p) || area(face) <= options.nodingTolerance) continue;
+    std::string use = options.defaultUse;
+    if (!parks.empty() && parks.contains(p)) {
+      use = "park";
+    } else if (domain.densitySpec) {
+      const Vec2 px = domain.densitySpec->transform.worldToPixel(p);
+      const int i = static_cast<int>(std::floor(px.x)), j = static_cast<int>(std::floor(px.y));
+      if (!domain.density.inside(i, j) || domain.density.at(i, j) <= 0.0f) use = options.emptyUse;
+    }
+    net.blocks.push_back({std::move(face), use});
+  }
+  reportProgress(progress, 1.0, "blocks");
+  return net;
+}
+
+}  // namespace urbanvec::streets
