@@ -92,10 +92,11 @@ app::CommandSpec spec() {
                   .byDefault(app::numberText(d.trace.majorDsep))
                   .withUnit("m")
                   .atLeast(1e-3));
-  o.push_back(option("-dsep-minor", ValueType::Real, "<metres>", "Separation of minor roads.")
-                  .byDefault(app::numberText(d.trace.minorDsep))
-                  .withUnit("m")
-                  .atLeast(1e-3));
+  o.push_back(
+      option("-dsep-minor", ValueType::Real, "<metres>",
+             "Separation of minor roads; default -dsep-major x " + app::numberText(d.minorDsepRatio) + ".")
+          .withUnit("m")
+          .atLeast(1e-3));
   o.push_back(option("-dtest-ratio", ValueType::Real, "<ratio>",
                      "d_test / d_sep: a street stops this close to a parallel one.")
                   .byDefault(app::numberText(d.trace.dtestRatio)));
@@ -143,6 +144,29 @@ app::CommandSpec spec() {
                      "d_sep where the density is 0, as a multiple of d_sep.")
                   .byDefault(app::numberText(d.trace.densityMaxFactor))
                   .atLeast(1));
+  o.push_back(option("-noise", ValueType::Real, "<degrees>",
+                     "Amplitude of the Perlin-noise rotation of the field (§7); 0 = none.")
+                  .byDefault(app::numberText(d.field.noiseAmplitude * 180.0 / M_PI))
+                  .withUnit("degrees")
+                  .atLeast(0)
+                  .atMost(90));
+  o.push_back(option("-noise-wavelength", ValueType::Real, "<metres>",
+                     "Wavelength of the noise; default 2 x -dsep-major.")
+                  .withUnit("m")
+                  .atLeast(1e-3)
+                  .isAdvanced());
+  o.push_back(
+      option("-delete-share", ValueType::Real, "<share>",
+             "Graph noise (§13.6): share of minor segments between crossings deleted (Halton-spread).")
+          .byDefault(app::numberText(d.noise.fullShare))
+          .atLeast(0)
+          .atMost(1));
+  o.push_back(option("-cut-share", ValueType::Real, "<share>",
+                     "Graph noise: share of minor segments cut back to a dead-end stub.")
+                  .byDefault(app::numberText(d.noise.partialShare))
+                  .atLeast(0)
+                  .atMost(1));
+  o.push_back(app::seedOption());
   o.push_back(option("-no-minor", ValueType::Flag, "", "Trace the major roads only."));
   o.push_back(option("-default-use", ValueType::String, "<class>",
                      "Land use of blocks (gridify class name) where the density is positive or not given.")
@@ -288,7 +312,14 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   if (!args.given("-boundary")) throw invalidOption("-boundary is required: the polygon the streets grow in");
   streets::StreetsOptions options;
   options.trace.majorDsep = args.real("-dsep-major");
-  options.trace.minorDsep = args.real("-dsep-minor");
+  options.trace.minorDsep =
+      args.given("-dsep-minor") ? args.real("-dsep-minor") : options.minorDsepRatio * options.trace.majorDsep;
+  options.field.seed = static_cast<std::uint64_t>(args.integer("-seed"));
+  options.noise.fullShare = args.real("-delete-share");
+  options.noise.partialShare = args.real("-cut-share");
+  options.noise.startIndex = 1 + static_cast<int>(args.integer("-seed") % 100000);
+  options.field.noiseAmplitude = args.real("-noise") * M_PI / 180.0;
+  if (args.given("-noise-wavelength")) options.field.noiseWavelength = args.real("-noise-wavelength");
   options.trace.dtestRatio = args.real("-dtest-ratio");
   if (!(options.trace.dtestRatio > 0.0) || options.trace.dtestRatio > 1.0)
     throw invalidOption("-dtest-ratio " + args.str("-dtest-ratio") +

@@ -8,6 +8,7 @@
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/core/geos.hpp"
 #include "urbanvec/core/planar_graph.hpp"
+#include "urbanvec/streets/graph_noise.hpp"
 #include "urbanvec/streets/polygon_index.hpp"
 
 namespace urbanvec::streets {
@@ -101,6 +102,7 @@ StreetNetwork generateStreets(const StreetsInput& input, const StreetsOptions& o
   StreetNetwork net;
   FieldOptions fo = options.field;
   if (!(fo.cellSize > 0.0)) fo.cellSize = options.fieldCellRatio * t.minorDsep;
+  if (!(fo.noiseWavelength > 0.0)) fo.noiseWavelength = options.noiseWavelengthRatio * t.majorDsep;
   std::vector<DesignElement> elements = input.design;
   const double sigma = options.polylineDecayRatio * t.majorDsep;
   const std::vector<DesignElement> fromLines =
@@ -133,17 +135,27 @@ StreetNetwork generateStreets(const StreetsInput& input, const StreetsOptions& o
       traceStreets(net.field, domain, seeds, t, &net.stats, subProgress(progress, 0.2, 0.8));
   net.tracedLines = traced.size();
 
-  // §10: node every crossing (GEOS), merge through degree-2 nodes of the same level.
-  std::vector<LineString> lines;
-  for (const Street& s : traced) lines.push_back(s.line);
-  const PlanarGraph graph = PlanarGraph::fromLines(lines, options.nodingTolerance);
+  // §10: node every crossing (GEOS); the pieces get the level of the street they lie on.
+  auto node = [&](const std::vector<Street>& streets, std::vector<StreetLevel>& edgeLevel) {
+    std::vector<LineString> lines;
+    for (const Street& s : streets) lines.push_back(s.line);
+    PlanarGraph g = PlanarGraph::fromLines(lines, options.nodingTolerance);
+    const LevelLookup lookup(streets, lo, hi, t.minorDsep);
+    edgeLevel.assign(g.edgeCount(), StreetLevel::Minor);
+    for (int e = 0; e < static_cast<int>(g.edgeCount()); ++e) {
+      const LineString& l = g.edge(e).line;
+      const std::size_t mid = (l.size() - 1) / 2;
+      edgeLevel[static_cast<std::size_t>(e)] = lookup.at((l[mid] + l[mid + 1]) * 0.5);
+    }
+    return g;
+  };
+  std::vector<StreetLevel> edgeLevel;
+  PlanarGraph graph = node(traced, edgeLevel);
   reportProgress(progress, 0.85, "noding");
-  const LevelLookup lookup(traced, lo, hi, t.minorDsep);
-  std::vector<StreetLevel> edgeLevel(graph.edgeCount());
-  for (int e = 0; e < static_cast<int>(graph.edgeCount()); ++e) {
-    const LineString& l = graph.edge(e).line;
-    const std::size_t mid = (l.size() - 1) / 2;
-    edgeLevel[static_cast<std::size_t>(e)] = lookup.at((l[mid] + l[mid + 1]) * 0.5);
+  // §13.6 graph noise, then the network is noded again.
+  if (options.noise.fullShare > 0.0 || options.noise.partialShare > 0.0) {
+    const std::vector<Street> kept = applyGraphNoise(graph, edgeLevel, options.noise);
+    graph = node(kept, edgeLevel);
   }
   auto levelChange = [&](int n) {
     const auto& es = graph.node(n).edges;

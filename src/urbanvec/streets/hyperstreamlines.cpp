@@ -136,9 +136,15 @@ class Tracer {
   void run(const std::vector<Vec2>& seeds, const Progress& progress) {
     traceLevel(StreetLevel::Major, seeds, subProgress(progress, 0.0, o_.minorRoads ? 0.4 : 1.0));
     if (o_.minorRoads) {
-      // Minor roads start on the major roads, crossing them (§12: seeds on region boundaries).
+      // Minor roads are traced region by region, the major roads bounding the regions (§12): their
+      // seeds lie on each side of every major road, every minor d_sep, and a minor road ends where it
+      // meets a major road (a T-junction). The regions on the two sides are seeded independently, so
+      // the two sides start half a spacing apart rather than lining up into crossings [INFERENCE].
       std::vector<std::pair<Vec2, int>> onMajor;
-      for (const Street& s : streets_) placeSeeds(s, StreetLevel::Minor, onMajor);
+      for (const Street& s : streets_) {
+        placeSeeds(s, StreetLevel::Minor, onMajor, 0.0, o_.sideOffset);
+        placeSeeds(s, StreetLevel::Minor, onMajor, 0.5, -o_.sideOffset);
+      }
       std::vector<Vec2> minorSeeds;
       traceLevel(StreetLevel::Minor, minorSeeds, subProgress(progress, 0.4, 1.0), onMajor);
     }
@@ -316,14 +322,19 @@ class Tracer {
 
   /// Seeds for the other family (or, for minor roads on a major road, the crossing family) every
   /// d_sep along a street (§9.1 step 2).
-  void placeSeeds(const Street& s, StreetLevel l, std::vector<std::pair<Vec2, int>>& out) const {
+  /// `phase`: the first seed lies phase × d_sep from the start; `offset`: seeds lie this far to the
+  /// left (negative: right) of the street.
+  void placeSeeds(const Street& s, StreetLevel l, std::vector<std::pair<Vec2, int>>& out, double phase = 0.0,
+                  double offset = 0.0) const {
     const int other = 1 - s.family;
-    double next = 0.0, at = 0.0;
+    double next = phase * dsep(l, s.line.front()), at = 0.0;
     for (std::size_t i = 0; i + 1 < s.line.size(); ++i) {
       const Vec2 a = s.line[i], b = s.line[i + 1];
       const double len = distance(a, b);
+      if (len <= 0.0) continue;
+      const Vec2 normal{-(b.y - a.y) / len, (b.x - a.x) / len};
       while (next <= at + len) {
-        const Vec2 p = a + (b - a) * ((next - at) / std::max(len, 1e-300));
+        const Vec2 p = a + (b - a) * ((next - at) / len) + normal * offset;
         out.push_back({p, other});
         next += dsep(l, p);
       }

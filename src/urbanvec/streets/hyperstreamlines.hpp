@@ -20,7 +20,7 @@ struct TraceOptions {
   /// d_sep of major roads (m). The spec's domain/8 suits its unit-square scenes, not real cities of
   /// any size [INFERENCE]: 4 × the minor d_sep, the spec's major/minor ratio (§16).
   double majorDsep = 360.0;
-  /// d_sep of minor roads (m): a typical urban block side (50–200 m) [INFERENCE].
+  /// d_sep of minor roads (m): the spec's major / 4 (§16), a typical urban block side.
   double minorDsep = 90.0;
   /// d_test = ratio × d_sep (Jobard & Lefer, spec §8.3 and §16: 0.5).
   double dtestRatio = 0.5;
@@ -47,6 +47,9 @@ struct TraceOptions {
   double priorityScaleRatio = 1.0;
   /// Trace minor roads (the second level).
   bool minorRoads = true;
+  /// Minor-road seeds lie this far (m) beside the major road they start from, so that they begin in
+  /// one region and end on the road (well above the noding tolerance).
+  double sideOffset = 0.5;
 };
 
 /// Where streets may grow.

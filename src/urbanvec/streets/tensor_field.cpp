@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "urbanvec/core/error.hpp"
+#include "urbanvec/core/random.hpp"
 
 namespace urbanvec::streets {
 
@@ -110,6 +111,30 @@ std::vector<DesignElement> polylineElements(const std::vector<LineString>& lines
       }
     }
   return out;
+}
+
+double perlin(const Vec2& p, int octaves, std::uint64_t seed) {
+  double sum = 0.0, norm = 0.0, scale = 1.0, weight = 1.0;
+  for (int o = 0; o < std::max(1, octaves); ++o) {
+    const double x = p.x * scale, y = p.y * scale;
+    const long i0 = static_cast<long>(std::floor(x)), j0 = static_cast<long>(std::floor(y));
+    auto grad = [&](long i, long j, double dx, double dy) {
+      const std::uint64_t h =
+          deriveSeed(seed + static_cast<std::uint64_t>(o) * 0x51ED27ULL,
+                     (static_cast<std::uint64_t>(i) << 32) ^ static_cast<std::uint32_t>(j));
+      const double a = static_cast<double>(h >> 11) * (2.0 * M_PI / 9007199254740992.0);
+      return std::cos(a) * dx + std::sin(a) * dy;
+    };
+    auto fade = [](double t) { return t * t * t * (t * (t * 6 - 15) + 10); };
+    const double fx = x - i0, fy = y - j0, u = fade(fx), v = fade(fy);
+    const double n00 = grad(i0, j0, fx, fy), n10 = grad(i0 + 1, j0, fx - 1, fy);
+    const double n01 = grad(i0, j0 + 1, fx, fy - 1), n11 = grad(i0 + 1, j0 + 1, fx - 1, fy - 1);
+    const double n = (n00 * (1 - u) + n10 * u) * (1 - v) + (n01 * (1 - u) + n11 * u) * v;
+    sum += weight * n * std::sqrt(2.0);
+    norm += weight;
+    scale *= 2.0, weight *= 0.5;
+  }
+  return std::clamp(sum / norm, -1.0, 1.0);
 }
 
 namespace {
@@ -274,6 +299,17 @@ TensorField buildField(const Vec2& minCorner, const Vec2& maxCorner,
   for (std::thread& t : pool) t.join();
   reportProgress(progress, 0.8, "smoothing");
   field.smooth(options.smoothingIterations);
+  if (options.noiseAmplitude > 0.0 && options.noiseWavelength > 0.0)
+    for (int j = 0; j < field.height(); ++j)
+      for (int i = 0; i < field.width(); ++i) {
+        // θ ← θ + N: (a, b) = R (cos 2θ, sin 2θ) turns by 2N.
+        const double n =
+            2.0 * options.noiseAmplitude *
+            perlin(field.vertex(i, j) / options.noiseWavelength, options.noiseOctaves, options.seed);
+        Tensor& t = field.at(i, j);
+        const double c = std::cos(n), s = std::sin(n);
+        t = {t.a * c - t.b * s, t.a * s + t.b * c};
+      }
   reportProgress(progress, 1.0, "smoothing");
   return field;
 }

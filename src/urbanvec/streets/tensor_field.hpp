@@ -60,9 +60,19 @@ struct FieldOptions {
   double heightWeight = 10.0;
   /// Jacobi smoothing iterations, λ = 1, 4-neighbourhood (spec §6.1, §16: 20).
   int smoothingIterations = 20;
+  /// Perlin-noise rotation θ ← θ + N(p) of the whole field after smoothing (spec §7, §16: amplitude
+  /// 0.1 to 0.3 rad, wavelength about 2 major d_sep): streets curve a little and stop lining up.
+  double noiseAmplitude = 0.2;   ///< radians, at most π/2; 0 = no noise
+  double noiseWavelength = 0.0;  ///< metres; 0 = set by the caller (2 × major d_sep)
+  int noiseOctaves = 2;
+  std::uint64_t seed = 1;
   /// Worker threads for the per-vertex evaluation (results do not depend on it).
   int threads = 1;
 };
+
+/// 2-D Perlin gradient noise at p (in wavelengths), octaves halving in size and amplitude, roughly in
+/// [−1, 1]; gradients come from the seed and the lattice point only.
+double perlin(const Vec2& p, int octaves, std::uint64_t seed);
 
 /// A height map on its own frame (metres), for the height-field term.
 struct HeightMap {
