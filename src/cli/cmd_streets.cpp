@@ -43,14 +43,15 @@ app::CommandSpec spec() {
       "field's two eigenvector families (interleaved seeding, RK4, d_sep / d_test separation, look-ahead "
       "joins into T-junctions), inside the -boundary polygon and out of -water; -parks and a -density raster "
       "widen the spacing. Every crossing is a node (GEOS). Writes the layers streets (class major/minor, "
-      "highway secondary/residential for gridify, length), street_nodes (degree) and blocks (faces inside "
-      "the boundary, land_use) in the boundary's CRS (a geographic one is replaced by its UTM zone); "
+      "highway primary/residential for gridify, length), street_nodes (degree) and blocks (faces inside "
+      "the boundary, land_use), and with -water the water polygons (layer water), in the boundary's CRS (a "
+      "geographic one is replaced by its UTM zone); "
       "-field writes the field as a 2-band raster (major direction in degrees, magnitude / median). "
       "Distances are in metres. The output does not depend on -threads. See docs/streets.md.";
   s.group = "Streets";
   s.positionals = {
       {"output", "Vector file to create (layers streets, street_nodes, blocks).", Role::OutputVector}};
-  s.outputLayers = {"streets", "street_nodes", "blocks"};
+  s.outputLayers = {"streets", "street_nodes", "blocks", "water"};
   auto& o = s.options;
   o.push_back(option("-boundary", ValueType::String, "<file>",
                      "Polygon layer (first layer) the streets grow in, e.g. from 'urbanvec boundary'.")
@@ -357,7 +358,9 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   write.layerStylesQml["street_nodes"] = io::singleSymbolQml(io::SymbolKind::Marker, "40,40,40,255", 1.0);
   write.layerStylesQml["blocks"] =
       io::categorizedQml("land_use", io::SymbolKind::Fill, io::landUseCategories(), 0.1);
-  io::VectorOutput output(outputPath, write, {"streets", "street_nodes", "blocks"},
+  std::vector<std::string> layerNames{"streets", "street_nodes", "blocks"};
+  if (args.given("-water")) layerNames.push_back("water");
+  io::VectorOutput output(outputPath, write, layerNames,
                           io::OutputRules{args.flag("-overwrite"), false, {}, ctx.inputs});
   std::optional<io::AtomicOutput> fieldOut;
   if (args.given("-field"))
@@ -443,7 +446,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
     const bool major = e.level == streets::StreetLevel::Major;
     streetsLayer.features.push_back({e.line,
                                      {++id, std::string(major ? "major" : "minor"),
-                                      std::string(major ? "secondary" : "residential"), length(e.line)}});
+                                      std::string(major ? "primary" : "residential"), length(e.line)}});
   }
   Layer nodesLayer{"street_nodes",
                    GeometryType::Point,
@@ -460,7 +463,15 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   id = 0;
   for (const streets::Block& b : net.blocks)
     blocksLayer.features.push_back({b.shape, {++id, b.landUse, area(b.shape)}});
-  output.write({streetsLayer, nodesLayer, blocksLayer}, crs);
+  std::vector<Layer> layers{streetsLayer, nodesLayer, blocksLayer};
+  if (!input.water.empty()) {
+    // The water the streets avoided, so that gridify (default -water-layer water) sees it too.
+    Layer water{"water", GeometryType::Polygon, {{"water_id", FieldType::Integer}}, {}};
+    id = 0;
+    for (const Polygon& p : input.water) water.features.push_back({p, {++id}});
+    layers.push_back(std::move(water));
+  }
+  output.write(layers, crs);
   if (fieldOut) writeFieldRaster(fieldOut->tempPath(), net.field, crs);
   if (fieldOut) fieldOut->commit(ctx.progress);
   output.commit(ctx.progress);
