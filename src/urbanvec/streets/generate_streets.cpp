@@ -105,8 +105,22 @@ StreetNetwork generateStreets(const StreetsInput& input, const StreetsOptions& o
   if (!(fo.noiseWavelength > 0.0)) fo.noiseWavelength = options.noiseWavelengthRatio * t.majorDsep;
   std::vector<DesignElement> elements = input.design;
   const double sigma = options.polylineDecayRatio * t.majorDsep;
+  // §4.3: Douglas-Peucker at about one field cell first, so a pixel staircase (a boundary traced
+  // from a raster) gives its overall direction rather than alternating 0 and 90 degree elements,
+  // which cancel into a degenerate field.
+  std::vector<LineString> fieldLines;
+  {
+    geos::Context ctx;
+    for (const LineString& l : input.fieldLines) {
+      if (l.size() < 2) continue;
+      const geos::GeomPtr simple = ctx.own(GEOSSimplify_r(ctx.handle(), ctx.lineString(l).get(), fo.cellSize),
+                                           "simplifying a field line");
+      for (LineString& part : ctx.toLines(simple.get()))
+        if (part.size() >= 2) fieldLines.push_back(std::move(part));
+    }
+  }
   const std::vector<DesignElement> fromLines =
-      polylineElements(input.fieldLines, options.polylineSpacingRatio * t.majorDsep, 1.0 / (sigma * sigma));
+      polylineElements(fieldLines, options.polylineSpacingRatio * t.majorDsep, 1.0 / (sigma * sigma));
   elements.insert(elements.end(), fromLines.begin(), fromLines.end());
   net.field =
       buildField(lo, hi, elements, input.dem ? &*input.dem : nullptr, fo, subProgress(progress, 0.0, 0.2));
