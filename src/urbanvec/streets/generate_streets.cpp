@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/core/geos.hpp"
 #include "urbanvec/core/planar_graph.hpp"
+#include "urbanvec/core/random.hpp"
 #include "urbanvec/streets/graph_noise.hpp"
 #include "urbanvec/streets/polygon_index.hpp"
 
@@ -28,7 +30,8 @@ class LevelLookup {
         cells_[index(m)].push_back({streets[s].line[i], streets[s].line[i + 1], streets[s].level});
       }
   }
-  StreetLevel at(const Vec2& p) const {
+  /// The level of the nearest street within maxDistance, else Outline.
+  StreetLevel at(const Vec2& p, double maxDistance) const {
     const int ci = std::clamp(static_cast<int>((p.x - origin_.x) / cell_), 0, nx_ - 1);
     const int cj = std::clamp(static_cast<int>((p.y - origin_.y) / cell_), 0, ny_ - 1);
     double best = std::numeric_limits<double>::infinity();
@@ -41,7 +44,7 @@ class LevelLookup {
           if (d < best - 1e-9 || (d <= best + 1e-9 && s.level == StreetLevel::Major))
             best = d, level = s.level;
         }
-    return level;
+    return best <= maxDistance ? level : StreetLevel::Outline;
   }
 
  private:
@@ -59,6 +62,14 @@ class LevelLookup {
   int nx_ = 0, ny_ = 0;
   std::vector<std::vector<Seg>> cells_;
 };
+
+/// GEOS 3.11's snap-rounding noder keeps its hot pixels in a KD-tree that degenerates into a list
+/// when the points come in spatial order (lines traced side by side): a 20 km city then spends minutes
+/// in KdTree::queryNode. A fixed pseudo-random order of the lines keeps the tree balanced; the results
+/// do not depend on it (fromLines and the blocks are ordered afterwards by their coordinates).
+void shuffleForNoding(std::vector<LineString>& lines) {
+  for (std::size_t i = lines.size(); i > 1; --i) std::swap(lines[i - 1], lines[deriveSeed(0x5eed, i) % i]);
+}
 
 void boxOf(const MultiPolygon& polygons, Vec2& lo, Vec2& hi) {
   lo = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
@@ -149,63 +160,90 @@ StreetNetwork generateStreets(const StreetsInput& input, const StreetsOptions& o
       traceStreets(net.field, domain, seeds, t, &net.stats, subProgress(progress, 0.2, 0.8));
   net.tracedLines = traced.size();
 
-  // §10: node every crossing (GEOS); the pieces get the level of the street they lie on.
-  auto node = [&](const std::vector<Street>& streets, std::vector<StreetLevel>& edgeLevel) {
-    std::vector<LineString> lines;
-    for (const Street& s : streets) lines.push_back(s.line);
-    PlanarGraph g = PlanarGraph::fromLines(lines, options.nodingTolerance);
-    const LevelLookup lookup(streets, lo, hi, t.minorDsep);
-    edgeLevel.assign(g.edgeCount(), StreetLevel::Minor);
-    for (int e = 0; e < static_cast<int>(g.edgeCount()); ++e) {
-      const LineString& l = g.edge(e).line;
-      const std::size_t mid = (l.size() - 1) / 2;
-      edgeLevel[static_cast<std::size_t>(e)] = lookup.at((l[mid] + l[mid + 1]) * 0.5);
+  // §10: node every crossing (GEOS) in one pass over the streets and the outlines of the boundary
+  // and the water (which close the blocks); each piece gets the level of the street it lies on, or
+  // Outline when it lies on no street.
+  std::vector<LineString> lines;
+  for (const Street& s : traced) lines.push_back(s.line);
+  for (const MultiPolygon* mp : {&input.boundary, &input.water})
+    for (const Polygon& p : *mp) {
+      lines.push_back(p.outer);
+      for (const Ring& h : p.holes) lines.push_back(h);
     }
-    return g;
-  };
-  std::vector<StreetLevel> edgeLevel;
-  PlanarGraph graph = node(traced, edgeLevel);
+  shuffleForNoding(lines);
+  const PlanarGraph graph = PlanarGraph::fromLines(lines, options.nodingTolerance);
+  std::vector<StreetLevel> edgeLevel(graph.edgeCount(), StreetLevel::Outline);
+  {
+    const LevelLookup lookup(traced, lo, hi, t.minorDsep);
+    for (int e = 0; e < static_cast<int>(graph.edgeCount()); ++e) {
+      const LineString& l = graph.edge(e).line;
+      const std::size_t mid = (l.size() - 1) / 2;
+      edgeLevel[static_cast<std::size_t>(e)] =
+          lookup.at((l[mid] + l[mid + 1]) * 0.5, 10.0 * options.nodingTolerance);
+    }
+  }
   reportProgress(progress, 0.85, "noding");
-  // §13.6 graph noise, then the network is noded again.
+  // §13.6 graph noise: deletions and cut-backs create no crossing, so nothing is noded again.
+  std::vector<Street> pieces;
   if (options.noise.fullShare > 0.0 || options.noise.partialShare > 0.0) {
-    const std::vector<Street> kept = applyGraphNoise(graph, edgeLevel, options.noise);
-    graph = node(kept, edgeLevel);
+    pieces = applyGraphNoise(graph, edgeLevel, options.noise);
+  } else {
+    for (int e = 0; e < static_cast<int>(graph.edgeCount()); ++e)
+      pieces.push_back({graph.edge(e).line, edgeLevel[static_cast<std::size_t>(e)], 0});
+  }
+  // The street graph: its pieces share their end points exactly.
+  PlanarGraph streets;
+  std::vector<StreetLevel> streetLevel;
+  {
+    std::map<std::pair<double, double>, int> id;
+    for (const Street& s : pieces)
+      if (s.level != StreetLevel::Outline)
+        for (const Vec2* p : {&s.line.front(), &s.line.back()}) id.emplace(std::make_pair(p->x, p->y), 0);
+    for (auto& [p, n] : id) n = streets.addNode({p.first, p.second});
+    for (const Street& s : pieces) {
+      if (s.level == StreetLevel::Outline) continue;
+      const int a = id.at({s.line.front().x, s.line.front().y}),
+                b = id.at({s.line.back().x, s.line.back().y});
+      if (a == b) continue;  // fromLines never makes loops
+      streets.addEdge(a, b, s.line);
+      streetLevel.push_back(s.level);
+    }
+    streets.sortRotations();
   }
   auto levelChange = [&](int n) {
-    const auto& es = graph.node(n).edges;
+    const auto& es = streets.node(n).edges;
     for (int e : es)
-      if (edgeLevel[static_cast<std::size_t>(e)] != edgeLevel[static_cast<std::size_t>(es.front())])
+      if (streetLevel[static_cast<std::size_t>(e)] != streetLevel[static_cast<std::size_t>(es.front())])
         return true;
     return false;
   };
-  std::vector<char> endNode(graph.nodeCount(), 0);
-  for (const std::vector<int>& chain : graph.chains(levelChange)) {
+  std::vector<char> endNode(streets.nodeCount(), 0);
+  for (const std::vector<int>& chain : streets.chains(levelChange)) {
     StreetEdge edge;
-    edge.line = graph.chainLine(chain);
-    edge.level = edgeLevel[static_cast<std::size_t>(chain.front())];
-    const std::vector<int> ends = graph.chainNodes(chain);
+    edge.line = streets.chainLine(chain);
+    edge.level = streetLevel[static_cast<std::size_t>(chain.front())];
+    const std::vector<int> ends = streets.chainNodes(chain);
     endNode[static_cast<std::size_t>(ends.front())] = endNode[static_cast<std::size_t>(ends.back())] = 1;
     net.streets.push_back(std::move(edge));
   }
-  for (int n = 0; n < static_cast<int>(graph.nodeCount()); ++n)
-    if (endNode[static_cast<std::size_t>(n)]) net.nodes.push_back({graph.node(n).p, graph.degree(n)});
+  for (int n = 0; n < static_cast<int>(streets.nodeCount()); ++n)
+    if (endNode[static_cast<std::size_t>(n)]) net.nodes.push_back({streets.node(n).p, streets.degree(n)});
 
-  // Blocks: faces of streets + boundary + coastline, inside the boundary and out of the water.
+  // Blocks: faces of the noded streets and outlines (GEOS polygonize, holes kept), inside the boundary
+  // and out of the water, in the order of their inner points.
   reportProgress(progress, 0.9, "blocks");
   geos::Context ctx;
-  MultiLineString soup;
-  for (const StreetEdge& e : net.streets) soup.push_back(e.line);
-  for (const MultiPolygon* mp : {&input.boundary, &input.water})
-    for (const Polygon& p : *mp) {
-      soup.push_back(p.outer);
-      for (const Ring& h : p.holes) soup.push_back(h);
-    }
-  const geos::GeomPtr noded =
-      ctx.own(GEOSUnaryUnionPrec_r(ctx.handle(), ctx.multiLineString(soup).get(), options.nodingTolerance),
-              "noding the block outlines");
-  const GEOSGeometry* parts[] = {noded.get()};
-  const geos::GeomPtr faces = ctx.own(GEOSPolygonize_r(ctx.handle(), parts, 1), "polygonizing the blocks");
+  std::vector<geos::GeomPtr> owned;
+  std::vector<const GEOSGeometry*> parts;
+  for (const Street& s : pieces) {
+    owned.push_back(ctx.lineString(s.line));
+    parts.push_back(owned.back().get());
+  }
+  const geos::GeomPtr faces =
+      ctx.own(GEOSPolygonize_r(ctx.handle(), parts.data(), static_cast<unsigned>(parts.size())),
+              "polygonizing the blocks");
   const PolygonIndex water(input.water), parks(input.parks);
+  std::vector<std::pair<std::pair<double, double>, Block>> found;
   for (Polygon& face : ctx.toPolygons(faces.get())) {
     const geos::GeomPtr g = ctx.polygon(face);
     const geos::GeomPtr inner = ctx.own(GEOSPointOnSurface_r(ctx.handle(), g.get()), "a block's inner point");
@@ -222,8 +260,10 @@ StreetNetwork generateStreets(const StreetsInput& input, const StreetsOptions& o
       const int i = static_cast<int>(std::floor(px.x)), j = static_cast<int>(std::floor(px.y));
       if (!domain.density.inside(i, j) || domain.density.at(i, j) <= 0.0f) use = options.emptyUse;
     }
-    net.blocks.push_back({std::move(face), use});
+    found.push_back({{y, x}, Block{std::move(face), use}});
   }
+  std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (auto& f : found) net.blocks.push_back(std::move(f.second));
   reportProgress(progress, 1.0, "blocks");
   return net;
 }

@@ -41,8 +41,12 @@ std::vector<Street> applyGraphNoise(const PlanarGraph& graph, const std::vector<
                                     const GraphNoiseOptions& options) {
   const int edges = static_cast<int>(graph.edgeCount());
   std::vector<int> degree(graph.nodeCount());
-  for (int n = 0; n < static_cast<int>(graph.nodeCount()); ++n)
-    degree[static_cast<std::size_t>(n)] = graph.degree(n);
+  // Street degrees: outline edges (boundary, water) do not count.
+  for (int e = 0; e < static_cast<int>(graph.edgeCount()); ++e)
+    if (edgeLevel[static_cast<std::size_t>(e)] != StreetLevel::Outline) {
+      ++degree[static_cast<std::size_t>(graph.edge(e).a)];
+      ++degree[static_cast<std::size_t>(graph.edge(e).b)];
+    }
   std::vector<int> minor;
   Vec2 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()}, hi = lo * -1.0;
   std::vector<Vec2> mid(static_cast<std::size_t>(edges));
@@ -65,17 +69,47 @@ std::vector<Street> applyGraphNoise(const PlanarGraph& graph, const std::vector<
            degree[static_cast<std::size_t>(graph.edge(e).a)] >= 3 &&
            degree[static_cast<std::size_t>(graph.edge(e).b)] >= 3;
   };
+  // Midpoints of the minor edges in buckets of about two edges each.
+  const double extent = std::max({hi.x - lo.x, hi.y - lo.y, 1.0});
+  const double cell = std::max(extent / std::sqrt(std::max<double>(1.0, minor.size() / 2.0)), 1e-6);
+  const int nx = static_cast<int>((hi.x - lo.x) / cell) + 1, ny = static_cast<int>((hi.y - lo.y) / cell) + 1;
+  std::vector<std::vector<int>> buckets(minor.empty() ? 0 : static_cast<std::size_t>(nx) * ny);
+  for (int e : minor) {
+    const Vec2& m = mid[static_cast<std::size_t>(e)];
+    const int i = std::clamp(static_cast<int>((m.x - lo.x) / cell), 0, nx - 1);
+    const int j = std::clamp(static_cast<int>((m.y - lo.y) / cell), 0, ny - 1);
+    buckets[static_cast<std::size_t>(j) * nx + i].push_back(e);
+  }
+  if (minor.empty())
+    return [&] {
+      std::vector<Street> out;
+      for (int e = 0; e < edges; ++e)
+        out.push_back({graph.edge(e).line, edgeLevel[static_cast<std::size_t>(e)], 0});
+      return out;
+    }();
   int index = options.startIndex, doneFull = 0, donePartial = 0;
   const int maxTries = 20 * static_cast<int>(minor.size()) + 100;
   for (int tries = 0; tries < maxTries && (doneFull < full || donePartial < partial); ++tries, ++index) {
     const Vec2 h{lo.x + halton(index, 2) * (hi.x - lo.x), lo.y + halton(index, 3) * (hi.y - lo.y)};
+    // Nearest eligible edge by its midpoint: rings of buckets outwards until no nearer one can exist.
     int best = -1;
     double bestD = std::numeric_limits<double>::infinity();
-    for (int e : minor) {
-      if (!eligible(e)) continue;
-      const Vec2 d = mid[static_cast<std::size_t>(e)] - h;
-      const double d2 = dot(d, d);
-      if (d2 < bestD) bestD = d2, best = e;
+    const int ci = std::clamp(static_cast<int>((h.x - lo.x) / cell), 0, nx - 1);
+    const int cj = std::clamp(static_cast<int>((h.y - lo.y) / cell), 0, ny - 1);
+    for (int ring = 0; ring <= nx + ny; ++ring) {
+      const double reach = (ring - 1) * cell;
+      if (ring > 0 && reach > 0 && reach * reach > bestD) break;
+      for (int j = cj - ring; j <= cj + ring; ++j)
+        for (int i = ci - ring; i <= ci + ring; ++i) {
+          if (std::max(std::abs(i - ci), std::abs(j - cj)) != ring || i < 0 || j < 0 || i >= nx || j >= ny)
+            continue;
+          for (int e : buckets[static_cast<std::size_t>(j) * nx + i]) {
+            if (!eligible(e)) continue;
+            const Vec2 d = mid[static_cast<std::size_t>(e)] - h;
+            const double d2 = dot(d, d);
+            if (d2 < bestD || (d2 == bestD && e < best)) bestD = d2, best = e;
+          }
+        }
     }
     if (best < 0) break;
     const bool cut = doneFull >= full || (donePartial < partial && (index % 4) == 0);

@@ -62,7 +62,8 @@ struct TraceDomain {
   Grid<float> density;
 };
 
-enum class StreetLevel : std::uint8_t { Major = 0, Minor = 1 };
+/// Outline marks the boundary and water outlines noded with the streets (for the blocks).
+enum class StreetLevel : std::uint8_t { Major = 0, Minor = 1, Outline = 2 };
 
 struct Street {
   LineString line;
