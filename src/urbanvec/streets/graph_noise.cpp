@@ -66,8 +66,8 @@ std::vector<Street> applyGraphNoise(const PlanarGraph& graph, const std::vector<
   const int partial = static_cast<int>(std::lround(options.partialShare * minor.size()));
   auto eligible = [&](int e) {
     return fate[static_cast<std::size_t>(e)] == Keep &&
-           degree[static_cast<std::size_t>(graph.edge(e).a)] >= 3 &&
-           degree[static_cast<std::size_t>(graph.edge(e).b)] >= 3;
+           degree[static_cast<std::size_t>(graph.edge(e).a)] >= options.minEndDegree &&
+           degree[static_cast<std::size_t>(graph.edge(e).b)] >= options.minEndDegree;
   };
   // Midpoints of the minor edges in buckets of about two edges each.
   const double extent = std::max({hi.x - lo.x, hi.y - lo.y, 1.0});

@@ -21,10 +21,13 @@ struct GraphNoiseOptions {
   double partialShare = 0.05;
   /// First Halton index used (spec: reproducible for a fixed start index).
   int startIndex = 1;
+  /// Only segments whose two ends have at least this street degree are touched: 4 = between two
+  /// crossings, so a deletion turns two crossings into T-junctions and never a T-junction into a bend.
+  int minEndDegree = 4;
 };
 
 /// The pieces that remain: each graph edge's line and level, minus the deleted ones, with cut-back
-/// edges shortened. Only minor edges whose two ends are crossings (degree >= 3 at that moment) are
+/// edges shortened. Only minor edges whose two ends have degree >= minEndDegree at that moment are
 /// touched, so no street is cut off from the network by a full deletion.
 std::vector<Street> applyGraphNoise(const PlanarGraph& graph, const std::vector<StreetLevel>& edgeLevel,
                                     const GraphNoiseOptions& options);

@@ -312,3 +312,56 @@ TEST(GraphNoise, HaltonAndCounts) {
   EXPECT_GT(m.share3Way, 0.2);
   EXPECT_NEAR(m.shareDeadEnd * m.nodes, 40.0, 1e-9);  // only the 40 original ends are dead ends
 }
+
+TEST(Streets, DensityAndParksWidenTheSpacing) {
+  // A density ramp, 0 on the westmost 500 m and rising to 1 in the east: blocks are larger where
+  // density is low (spec §19.2 check 22); then a park over the north half.
+  StreetsInput in;
+  in.boundary = square(0, 0, 3000);
+  DesignElement e;
+  e.position = {1500, 1500};
+  in.design = {e};
+  GridSpec spec;
+  spec.width = spec.height = 30;
+  spec.transform.c = {0, 100, 0, 3000, 0, -100};
+  in.densitySpec = spec;
+  in.density = Grid<float>(30, 30);
+  for (int r = 0; r < 30; ++r)
+    for (int c = 0; c < 30; ++c) in.density.at(c, r) = std::max(0.0f, static_cast<float>(c - 5) / 24.0f);
+  StreetsOptions o = quiet();
+  o.trace.majorDsep = 240;
+  o.trace.minorDsep = 80;
+  const StreetNetwork net = generateStreets(in, o);
+  double westArea = 0, eastArea = 0;
+  int west = 0, east = 0;
+  for (const Block& b : net.blocks) {
+    Vec2 c;
+    for (std::size_t i = 0; i + 1 < b.shape.outer.size(); ++i) c += b.shape.outer[i];
+    c = c / static_cast<double>(b.shape.outer.size() - 1);
+    if (c.x < 1000) westArea += area(b.shape), ++west;
+    if (c.x > 2000) eastArea += area(b.shape), ++east;
+  }
+  ASSERT_GT(west, 0);
+  ASSERT_GT(east, 0);
+  // d_sep is about 2.5x in the west: mean blocks several times larger.
+  EXPECT_GT(westArea / west, 2.0 * eastArea / east);
+  // Blocks where the raster is 0 (the westmost 500 m) get the empty use; others residential.
+  bool unused = false;
+  for (const Block& b : net.blocks) unused |= b.landUse == "unused";
+  EXPECT_TRUE(unused);
+
+  // A park over the north half: fewer streets there than in the south.
+  StreetsInput withPark;
+  withPark.boundary = in.boundary;
+  withPark.design = in.design;
+  withPark.parks = {{{{0, 1500}, {3000, 1500}, {3000, 3000}, {0, 3000}, {0, 1500}}, {}}};
+  const StreetNetwork parked = generateStreets(withPark, o);
+  double north = 0, south = 0;
+  for (const StreetEdge& s : parked.streets)
+    for (std::size_t i = 0; i + 1 < s.line.size(); ++i)
+      ((s.line[i].y + s.line[i + 1].y) / 2 > 1500 ? north : south) += distance(s.line[i], s.line[i + 1]);
+  EXPECT_LT(north, 0.75 * south);
+  int parkBlocks = 0;
+  for (const Block& b : parked.blocks) parkBlocks += b.landUse == "park";
+  EXPECT_GT(parkBlocks, 0);
+}
