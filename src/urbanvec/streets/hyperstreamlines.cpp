@@ -7,6 +7,7 @@
 #include <cmath>
 #include <deque>
 #include <limits>
+#include <utility>
 
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/streets/polygon_index.hpp"
@@ -14,8 +15,9 @@
 namespace urbanvec::streets {
 namespace {
 
-/// Bucketed points of finished lines, for the d_sep / d_test distance queries (§9.4).
-class PointGrid {
+/// Square buckets over the domain (§9.4 spatial acceleration), holding items of type T.
+template <class T>
+class BucketGrid {
  public:
   void init(const Vec2& lo, const Vec2& hi, double cell) {
     origin_ = lo, cell_ = cell;
@@ -23,55 +25,72 @@ class PointGrid {
     ny_ = static_cast<int>((hi.y - lo.y) / cell) + 1;
     cells_.assign(static_cast<std::size_t>(nx_) * ny_, {});
   }
-  void add(const Vec2& p) {
-    const int i = std::clamp(static_cast<int>((p.x - origin_.x) / cell_), 0, nx_ - 1);
-    const int j = std::clamp(static_cast<int>((p.y - origin_.y) / cell_), 0, ny_ - 1);
-    cells_[static_cast<std::size_t>(j) * nx_ + i].push_back(p);
-  }
-  /// True when some point lies closer than r to p.
-  bool anyWithin(const Vec2& p, double r) const {
-    if (cells_.empty()) return false;
-    const double r2 = r * r;
-    const int i0 = std::max(0, static_cast<int>(std::floor((p.x - r - origin_.x) / cell_)));
-    const int i1 = std::min(nx_ - 1, static_cast<int>(std::floor((p.x + r - origin_.x) / cell_)));
-    const int j0 = std::max(0, static_cast<int>(std::floor((p.y - r - origin_.y) / cell_)));
-    const int j1 = std::min(ny_ - 1, static_cast<int>(std::floor((p.y + r - origin_.y) / cell_)));
+  bool empty() const { return cells_.empty(); }
+  /// Calls fn(bucket) for each bucket overlapping the box spanned by a and b (clamped to the grid).
+  template <class Fn>
+  void forBox(const Vec2& a, const Vec2& b, Fn fn) const {
+    if (cells_.empty()) return;
+    const int i0 = col(std::min(a.x, b.x)), i1 = col(std::max(a.x, b.x));
+    const int j0 = row(std::min(a.y, b.y)), j1 = row(std::max(a.y, b.y));
     for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i)
-        for (const Vec2& q : cells_[static_cast<std::size_t>(j) * nx_ + i]) {
-          const Vec2 d = q - p;
-          if (dot(d, d) < r2) return true;
-        }
-    return false;
+      for (int i = i0; i <= i1; ++i) fn(cells_[static_cast<std::size_t>(j) * nx_ + i]);
+  }
+  template <class Fn>
+  void forBoxMutable(const Vec2& a, const Vec2& b, Fn fn) {
+    std::as_const(*this).forBox(a, b, [&](const std::vector<T>& c) { fn(const_cast<std::vector<T>&>(c)); });
   }
 
  private:
+  int col(double x) const {
+    return std::clamp(static_cast<int>(std::floor((x - origin_.x) / cell_)), 0, nx_ - 1);
+  }
+  int row(double y) const {
+    return std::clamp(static_cast<int>(std::floor((y - origin_.y) / cell_)), 0, ny_ - 1);
+  }
   Vec2 origin_;
   double cell_ = 1.0;
   int nx_ = 0, ny_ = 0;
-  std::vector<std::vector<Vec2>> cells_;
+  std::vector<std::vector<T>> cells_;
 };
 
-/// Bucketed segments of finished lines, for crossings (look-ahead joins, minor roads ending on major).
+/// Points of finished lines, for the d_sep / d_test distance queries.
+class PointGrid {
+ public:
+  void init(const Vec2& lo, const Vec2& hi, double cell) { grid_.init(lo, hi, cell); }
+  void add(const Vec2& p) {
+    grid_.forBoxMutable(p, p, [&](std::vector<Vec2>& c) { c.push_back(p); });
+  }
+  /// True when some point lies closer than r to p.
+  bool anyWithin(const Vec2& p, double r) const {
+    const double r2 = r * r;
+    bool found = false;
+    grid_.forBox(p - Vec2{r, r}, p + Vec2{r, r}, [&](const std::vector<Vec2>& c) {
+      for (std::size_t k = 0; !found && k < c.size(); ++k) {
+        const Vec2 d = c[k] - p;
+        found = dot(d, d) < r2;
+      }
+    });
+    return found;
+  }
+
+ private:
+  BucketGrid<Vec2> grid_;
+};
+
+/// Segments of finished lines, for crossings (look-ahead joins, minor roads ending on major).
 class SegmentGrid {
  public:
-  void init(const Vec2& lo, const Vec2& hi, double cell) {
-    origin_ = lo, cell_ = cell;
-    nx_ = static_cast<int>((hi.x - lo.x) / cell) + 1;
-    ny_ = static_cast<int>((hi.y - lo.y) / cell) + 1;
-    cells_.assign(static_cast<std::size_t>(nx_) * ny_, {});
-  }
+  void init(const Vec2& lo, const Vec2& hi, double cell) { grid_.init(lo, hi, cell); }
   void add(const Vec2& a, const Vec2& b) {
     const int id = static_cast<int>(segs_.size());
     segs_.push_back({a, b});
-    forCells(a, b, [&](std::vector<int>& c) { c.push_back(id); });
+    grid_.forBoxMutable(a, b, [&](std::vector<int>& c) { c.push_back(id); });
   }
   /// The first crossing of p→q with a stored segment at a fraction t > minT, or t > 1 when none.
   double firstCrossing(const Vec2& p, const Vec2& q, double minT = 0.0) const {
     double best = 2.0;
-    if (cells_.empty()) return best;
     const Vec2 d = q - p;
-    const_cast<SegmentGrid*>(this)->forCells(p, q, [&](std::vector<int>& c) {
+    grid_.forBox(p, q, [&](const std::vector<int>& c) {
       for (int id : c) {
         const auto& [a, b] = segs_[static_cast<std::size_t>(id)];
         const Vec2 f = b - a;
@@ -85,23 +104,7 @@ class SegmentGrid {
   }
 
  private:
-  template <class Fn>
-  void forCells(const Vec2& a, const Vec2& b, Fn fn) {
-    const int i0 =
-        std::clamp(static_cast<int>(std::floor((std::min(a.x, b.x) - origin_.x) / cell_)), 0, nx_ - 1);
-    const int i1 =
-        std::clamp(static_cast<int>(std::floor((std::max(a.x, b.x) - origin_.x) / cell_)), 0, nx_ - 1);
-    const int j0 =
-        std::clamp(static_cast<int>(std::floor((std::min(a.y, b.y) - origin_.y) / cell_)), 0, ny_ - 1);
-    const int j1 =
-        std::clamp(static_cast<int>(std::floor((std::max(a.y, b.y) - origin_.y) / cell_)), 0, ny_ - 1);
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) fn(cells_[static_cast<std::size_t>(j) * nx_ + i]);
-  }
-  Vec2 origin_;
-  double cell_ = 1.0;
-  int nx_ = 0, ny_ = 0;
-  std::vector<std::vector<int>> cells_;
+  BucketGrid<int> grid_;
   std::vector<std::pair<Vec2, Vec2>> segs_;
 };
 
