@@ -73,6 +73,48 @@ expect_status 0
 n=$(feature_count "$WORK/city.gpkg" parcels)
 [ "${n:-0}" -gt 20 ] || fail "the chain gave only '$n' parcels"
 
+# Terrain and density: a DEM alone is a design (a round hill: major roads ring it, §4.4), and a density
+# raster widens the spacing where it is low (fewer streets than at full density).
+$PY - "$WORK/hill.tif" "$WORK/density.tif" <<'PY'
+import sys
+import numpy as np
+from osgeo import gdal, osr
+srs = osr.SpatialReference(); srs.ImportFromEPSG(32633)
+y, x = np.mgrid[0:110, 0:110]
+for path, data in ((sys.argv[1], 100.0 - 0.05 * np.hypot(x * 20 - 1100.0, y * 20 - 1100.0)),
+                   (sys.argv[2], np.where(x < 55, 0.0, 5000.0))):
+    ds = gdal.GetDriverByName("GTiff").Create(path, 110, 110, 1, gdal.GDT_Float32)
+    ds.SetGeoTransform((449900, 20, 0, 5552100, 0, -20)); ds.SetProjection(srs.ExportToWkt())
+    ds.GetRasterBand(1).WriteArray(data.astype("float32")); ds = None
+PY
+run_cmd streets -q -boundary "$WORK/boundary.gpkg" -dem "$WORK/hill.tif" -dsep-major 250 -no-minor "$WORK/hill.gpkg"
+expect_status 0
+# Streets follow the contours (rings) or climb the gradient (rays): measured per segment, the angle
+# to the summit's radial direction is near 90 or near 0 degrees for most of the length.
+$PY - "$WORK/hill.gpkg" <<'PY' || fail "terrain streets follow neither contours nor gradient"
+import math, sys
+from osgeo import ogr
+ds = ogr.Open(sys.argv[1]); lyr = ds.GetLayer("streets")
+good = total = 0.0
+for f in lyr:
+    pts = f.GetGeometryRef().GetPoints()
+    for (x0, y0), (x1, y1) in zip(pts, pts[1:]):
+        mx, my = (x0 + x1) / 2 - 451000, (y0 + y1) / 2 - 5551000
+        r, l = math.hypot(mx, my), math.hypot(x1 - x0, y1 - y0)
+        if r < 150 or r > 900 or l == 0: continue
+        c = abs((mx * (x1 - x0) + my * (y1 - y0)) / (r * l))
+        a = math.degrees(math.acos(min(1.0, c)))
+        total += l
+        good += l if (a < 10 or a > 80) else 0
+assert total > 2000 and good > 0.8 * total, (good, total)
+PY
+run_cmd streets -q -boundary "$WORK/boundary.gpkg" -design "$WORK/design.json" -dsep-major 250 -density "$WORK/density.tif" "$WORK/dense.gpkg"
+expect_status 0
+west=$(ogrinfo -ro -q -dialect sqlite -sql "SELECT SUM(ST_Length(geom)) AS l FROM streets WHERE MbrMaxX(geom) < 450950" "$WORK/dense.gpkg" | sed -n 's/^  l (Real) = //p')
+east=$(ogrinfo -ro -q -dialect sqlite -sql "SELECT SUM(ST_Length(geom)) AS l FROM streets WHERE MbrMinX(geom) > 451050" "$WORK/dense.gpkg" | sed -n 's/^  l (Real) = //p')
+awk -v w="${west:-0}" -v e="${east:-0}" 'BEGIN { exit !(e > 1.5 * w) }' || fail "street length west $west, east $east: density does not widen the spacing"
+[ "$(q "$WORK/dense.gpkg" "SELECT COUNT(*) AS n FROM blocks WHERE land_use = 'unused'")" -gt 0 ] || fail "no unused block where the density is 0"
+
 # Bad input: one ERROR line, exit status, nothing written.
 bad() {  # bad <status> <expected stderr substring> <args...>
   local status=$1 msg=$2
