@@ -188,3 +188,10 @@ echo
 report=("$PY" "$repo/bench/vectorize/report.py" "$work")
 [ -n "$markdown" ] && report+=(--markdown "$markdown")
 "${report[@]}"
+
+# Streets (issue 18): synthetic 25, 100 and 400 km² cities, wall time and peak memory (docs/performance.md).
+if [ "${BENCH_STREETS:-1}" = 1 ]; then
+  echo
+  echo "urbanvec streets:"
+  URBANVEC="$urbanvec" bash "$repo/bench/streets/speed.sh" "$threads"
+fi

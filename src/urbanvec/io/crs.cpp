@@ -75,3 +75,13 @@ int utmEpsgAt(const std::string& wkt, double x, double y) {
 }
 
 }  // namespace urbanvec::io
+
+namespace urbanvec::io {
+bool sameCrs(const std::string& a, const std::string& b) {
+  if (a.empty() || b.empty()) return a.empty() && b.empty();
+  ensureGdal();
+  OGRSpatialReference sa, sb;
+  if (sa.importFromWkt(a.c_str()) != OGRERR_NONE || sb.importFromWkt(b.c_str()) != OGRERR_NONE) return a == b;
+  return sa.IsSame(&sb);
+}
+}  // namespace urbanvec::io

@@ -22,3 +22,8 @@ std::string nonMetricUnit(const std::string& wkt);
 int utmEpsgAt(const std::string& wkt, double x, double y);
 
 }  // namespace urbanvec::io
+
+namespace urbanvec::io {
+/// True when two CRS (WKT) are the same (OGRSpatialReference::IsSame); two empty strings are the same.
+bool sameCrs(const std::string& a, const std::string& b);
+}  // namespace urbanvec::io

@@ -444,6 +444,12 @@ std::optional<LayerRead> readVectorLayer(const std::string& path, const std::str
                            "' to the output CRS");
     }
   }
+  if (!options.where.empty()) {
+    CPLErrorReset();
+    if (in->SetAttributeFilter(options.where.c_str()) != OGRERR_NONE)
+      throw invalidOption("-where: layer '" + layerName + "' of " + role + " '" + path +
+                          "' does not accept the filter '" + options.where + "' (" + lastGdalMessage() + ")");
+  }
   in->ResetReading();
   CPLErrorReset();
   while (OGRFeature* raw = in->GetNextFeature()) {
@@ -472,6 +478,10 @@ std::optional<LayerRead> readVectorLayer(const std::string& path, const std::str
     }
     layer.features.push_back(std::move(out));
   }
+  // SQL-backed drivers (GeoPackage) accept any filter and fail only while reading.
+  if (!options.where.empty() && CPLGetLastErrorType() >= CE_Failure)
+    throw invalidOption("-where: layer '" + layerName + "' of " + role + " '" + path +
+                        "' does not accept the filter '" + options.where + "' (" + lastGdalMessage() + ")");
   return result;
 }
 

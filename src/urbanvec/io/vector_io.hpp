@@ -56,6 +56,8 @@ class VectorOutput {
 
 struct VectorReadOptions {
   std::string targetCrs;  ///< reproject to this CRS (WKT or any user string GDAL accepts); empty = keep
+  /// OGR SQL attribute filter (-where); empty = every feature. A filter OGR refuses is an InvalidOption.
+  std::string where;
 };
 
 struct LayerRead {

@@ -1,0 +1,271 @@
+// The streets pipeline (spec chen-streets.md §1 stages one and two, §10 graph and blocks).
+#include "urbanvec/streets/generate_streets.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "urbanvec/core/error.hpp"
+#include "urbanvec/core/geos.hpp"
+#include "urbanvec/core/planar_graph.hpp"
+#include "urbanvec/core/random.hpp"
+#include "urbanvec/streets/graph_noise.hpp"
+#include "urbanvec/streets/polygon_index.hpp"
+
+namespace urbanvec::streets {
+namespace {
+
+/// The level of the traced street nearest to a point (for the noded pieces, which lose it).
+class LevelLookup {
+ public:
+  LevelLookup(const std::vector<Street>& streets, const Vec2& lo, const Vec2& hi, double cell)
+      : origin_(lo), cell_(cell) {
+    nx_ = static_cast<int>((hi.x - lo.x) / cell) + 1;
+    ny_ = static_cast<int>((hi.y - lo.y) / cell) + 1;
+    cells_.assign(static_cast<std::size_t>(nx_) * ny_, {});
+    for (std::size_t s = 0; s < streets.size(); ++s)
+      for (std::size_t i = 0; i + 1 < streets[s].line.size(); ++i) {
+        const Vec2 m = (streets[s].line[i] + streets[s].line[i + 1]) * 0.5;
+        cells_[index(m)].push_back({streets[s].line[i], streets[s].line[i + 1], streets[s].level});
+      }
+  }
+  /// The level of the nearest street within maxDistance, else Outline.
+  StreetLevel at(const Vec2& p, double maxDistance) const {
+    const int ci = std::clamp(static_cast<int>((p.x - origin_.x) / cell_), 0, nx_ - 1);
+    const int cj = std::clamp(static_cast<int>((p.y - origin_.y) / cell_), 0, ny_ - 1);
+    double best = std::numeric_limits<double>::infinity();
+    StreetLevel level = StreetLevel::Minor;
+    for (int j = std::max(0, cj - 1); j <= std::min(ny_ - 1, cj + 1); ++j)
+      for (int i = std::max(0, ci - 1); i <= std::min(nx_ - 1, ci + 1); ++i)
+        for (const Seg& s : cells_[static_cast<std::size_t>(j) * nx_ + i]) {
+          const double d = distanceToSegment(p, s.a, s.b);
+          // Ties (a major and a minor street through the same point) go to the major street.
+          if (d < best - 1e-9 || (d <= best + 1e-9 && s.level == StreetLevel::Major))
+            best = d, level = s.level;
+        }
+    return best <= maxDistance ? level : StreetLevel::Outline;
+  }
+
+ private:
+  struct Seg {
+    Vec2 a, b;
+    StreetLevel level;
+  };
+  std::size_t index(const Vec2& p) const {
+    const int i = std::clamp(static_cast<int>((p.x - origin_.x) / cell_), 0, nx_ - 1);
+    const int j = std::clamp(static_cast<int>((p.y - origin_.y) / cell_), 0, ny_ - 1);
+    return static_cast<std::size_t>(j) * nx_ + i;
+  }
+  Vec2 origin_;
+  double cell_;
+  int nx_ = 0, ny_ = 0;
+  std::vector<std::vector<Seg>> cells_;
+};
+
+/// GEOS 3.11's snap-rounding noder keeps its hot pixels in a KD-tree that degenerates into a list
+/// when the points come in spatial order (lines traced side by side): a 20 km city then spends minutes
+/// in KdTree::queryNode. A fixed pseudo-random order of the lines keeps the tree balanced; the results
+/// do not depend on it (fromLines and the blocks are ordered afterwards by their coordinates).
+void shuffleForNoding(std::vector<LineString>& lines) {
+  for (std::size_t i = lines.size(); i > 1; --i) std::swap(lines[i - 1], lines[deriveSeed(0x5eed, i) % i]);
+}
+
+void boxOf(const MultiPolygon& polygons, Vec2& lo, Vec2& hi) {
+  lo = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  hi = lo * -1.0;
+  for (const Polygon& p : polygons)
+    for (const Vec2& v : p.outer) {
+      lo.x = std::min(lo.x, v.x), lo.y = std::min(lo.y, v.y);
+      hi.x = std::max(hi.x, v.x), hi.y = std::max(hi.y, v.y);
+    }
+}
+
+}  // namespace
+
+StreetNetwork generateStreets(const StreetsInput& input, const StreetsOptions& options,
+                              const Progress& progress) {
+  if (input.design.size() > options.maxDesignElements)
+    throw invalidInput("the design has " + std::to_string(input.design.size()) + " elements; at most " +
+                       std::to_string(options.maxDesignElements) + " are accepted");
+  if (input.design.empty() && input.fieldLines.empty() && !input.dem)
+    throw invalidInput(
+        "the street design is empty: give design elements (-design), roads or lines for the field "
+        "(-roads, -field-lines) or a DEM (-dem)");
+  if (input.boundary.empty()) throw invalidInput("the boundary holds no polygon");
+  const TraceOptions& t = options.trace;
+  if (!(t.majorDsep > 0.0) || !(t.minorDsep > 0.0))
+    throw invalidOption("-dsep-major and -dsep-minor must be > 0");
+  if (!(t.dtestRatio > 0.0) || t.dtestRatio > 1.0)
+    throw invalidOption("-dtest-ratio " + std::to_string(t.dtestRatio) +
+                        " makes d_test exceed d_sep (it must lie in (0, 1])");
+  const PolygonIndex land(input.boundary);
+  for (const DesignElement& e : input.design)
+    if (!land.contains(e.position))
+      throw invalidInput("design element at (" + std::to_string(e.position.x) + ", " +
+                         std::to_string(e.position.y) + ") lies outside the boundary");
+
+  Vec2 lo, hi;
+  boxOf(input.boundary, lo, hi);
+  const double margin = t.majorDsep;
+  lo = lo - Vec2{margin, margin}, hi = hi + Vec2{margin, margin};
+
+  StreetNetwork net;
+  FieldOptions fo = options.field;
+  if (!(fo.cellSize > 0.0)) fo.cellSize = options.fieldCellRatio * t.minorDsep;
+  if (!(fo.noiseWavelength > 0.0)) fo.noiseWavelength = options.noiseWavelengthRatio * t.majorDsep;
+  std::vector<DesignElement> elements = input.design;
+  const double sigma = options.polylineDecayRatio * t.majorDsep;
+  // §4.3: Douglas-Peucker at about one field cell first, so a pixel staircase (a boundary traced
+  // from a raster) gives its overall direction rather than alternating 0 and 90 degree elements,
+  // which cancel into a degenerate field.
+  std::vector<LineString> fieldLines;
+  {
+    geos::Context ctx;
+    for (const LineString& l : input.fieldLines) {
+      if (l.size() < 2) continue;
+      const geos::GeomPtr simple = ctx.own(GEOSSimplify_r(ctx.handle(), ctx.lineString(l).get(), fo.cellSize),
+                                           "simplifying a field line");
+      for (LineString& part : ctx.toLines(simple.get()))
+        if (part.size() >= 2) fieldLines.push_back(std::move(part));
+    }
+  }
+  const std::vector<DesignElement> fromLines =
+      polylineElements(fieldLines, options.polylineSpacingRatio * t.majorDsep, 1.0 / (sigma * sigma));
+  elements.insert(elements.end(), fromLines.begin(), fromLines.end());
+  net.field =
+      buildField(lo, hi, elements, input.dem ? &*input.dem : nullptr, fo, subProgress(progress, 0.0, 0.2));
+
+  TraceDomain domain;
+  domain.land = input.boundary;
+  domain.water = input.water;
+  domain.parks = input.parks;
+  if (input.densitySpec) {
+    float top = 0.0f;
+    for (float v : input.density.cells)
+      if (std::isfinite(v)) top = std::max(top, v);
+    domain.densitySpec = input.densitySpec;
+    domain.density = input.density;
+    for (float& v : domain.density.cells)
+      v = (std::isfinite(v) && top > 0.0f) ? std::max(0.0f, v / top) : 0.0f;
+  }
+  // Seeds: the design elements (a radial centre is degenerate: start one minor spacing east of it),
+  // then points along the field's polylines every major d_sep, so major roads grow from them.
+  std::vector<Vec2> seeds;
+  for (const DesignElement& e : input.design)
+    seeds.push_back(e.kind == ElementKind::Radial ? e.position + Vec2{t.minorDsep, 0.0} : e.position);
+  for (const LineString& l : input.fieldLines)
+    for (const Vec2& p : densified(l, t.majorDsep)) seeds.push_back(p);
+  std::vector<Street> traced =
+      traceStreets(net.field, domain, seeds, t, &net.stats, subProgress(progress, 0.2, 0.8));
+  net.tracedLines = traced.size();
+
+  // §10: node every crossing (GEOS) in one pass over the streets and the outlines of the boundary
+  // and the water (which close the blocks); each piece gets the level of the street it lies on, or
+  // Outline when it lies on no street.
+  std::vector<LineString> lines;
+  for (const Street& s : traced) lines.push_back(s.line);
+  for (const MultiPolygon* mp : {&input.boundary, &input.water})
+    for (const Polygon& p : *mp) {
+      lines.push_back(p.outer);
+      for (const Ring& h : p.holes) lines.push_back(h);
+    }
+  shuffleForNoding(lines);
+  const PlanarGraph graph = PlanarGraph::fromLines(lines, options.nodingTolerance);
+  std::vector<StreetLevel> edgeLevel(graph.edgeCount(), StreetLevel::Outline);
+  {
+    const LevelLookup lookup(traced, lo, hi, t.minorDsep);
+    for (int e = 0; e < static_cast<int>(graph.edgeCount()); ++e) {
+      const LineString& l = graph.edge(e).line;
+      const std::size_t mid = (l.size() - 1) / 2;
+      edgeLevel[static_cast<std::size_t>(e)] =
+          lookup.at((l[mid] + l[mid + 1]) * 0.5, 10.0 * options.nodingTolerance);
+    }
+  }
+  reportProgress(progress, 0.85, "noding");
+  // §13.6 graph noise: deletions and cut-backs create no crossing, so nothing is noded again.
+  std::vector<Street> pieces;
+  if (options.noise.fullShare > 0.0 || options.noise.partialShare > 0.0) {
+    pieces = applyGraphNoise(graph, edgeLevel, options.noise);
+  } else {
+    for (int e = 0; e < static_cast<int>(graph.edgeCount()); ++e)
+      pieces.push_back({graph.edge(e).line, edgeLevel[static_cast<std::size_t>(e)], 0});
+  }
+  // The street graph: its pieces share their end points exactly.
+  PlanarGraph streets;
+  std::vector<StreetLevel> streetLevel;
+  {
+    std::map<std::pair<double, double>, int> id;
+    for (const Street& s : pieces)
+      if (s.level != StreetLevel::Outline)
+        for (const Vec2* p : {&s.line.front(), &s.line.back()}) id.emplace(std::make_pair(p->x, p->y), 0);
+    for (auto& [p, n] : id) n = streets.addNode({p.first, p.second});
+    for (const Street& s : pieces) {
+      if (s.level == StreetLevel::Outline) continue;
+      const int a = id.at({s.line.front().x, s.line.front().y}),
+                b = id.at({s.line.back().x, s.line.back().y});
+      if (a == b) continue;  // fromLines never makes loops
+      streets.addEdge(a, b, s.line);
+      streetLevel.push_back(s.level);
+    }
+    streets.sortRotations();
+  }
+  auto levelChange = [&](int n) {
+    const auto& es = streets.node(n).edges;
+    for (int e : es)
+      if (streetLevel[static_cast<std::size_t>(e)] != streetLevel[static_cast<std::size_t>(es.front())])
+        return true;
+    return false;
+  };
+  std::vector<char> endNode(streets.nodeCount(), 0);
+  for (const std::vector<int>& chain : streets.chains(levelChange)) {
+    StreetEdge edge;
+    edge.line = streets.chainLine(chain);
+    edge.level = streetLevel[static_cast<std::size_t>(chain.front())];
+    const std::vector<int> ends = streets.chainNodes(chain);
+    endNode[static_cast<std::size_t>(ends.front())] = endNode[static_cast<std::size_t>(ends.back())] = 1;
+    net.streets.push_back(std::move(edge));
+  }
+  for (int n = 0; n < static_cast<int>(streets.nodeCount()); ++n)
+    if (endNode[static_cast<std::size_t>(n)]) net.nodes.push_back({streets.node(n).p, streets.degree(n)});
+
+  // Blocks: faces of the noded streets and outlines (GEOS polygonize, holes kept), inside the boundary
+  // and out of the water, in the order of their inner points.
+  reportProgress(progress, 0.9, "blocks");
+  geos::Context ctx;
+  std::vector<geos::GeomPtr> owned;
+  std::vector<const GEOSGeometry*> parts;
+  for (const Street& s : pieces) {
+    owned.push_back(ctx.lineString(s.line));
+    parts.push_back(owned.back().get());
+  }
+  const geos::GeomPtr faces =
+      ctx.own(GEOSPolygonize_r(ctx.handle(), parts.data(), static_cast<unsigned>(parts.size())),
+              "polygonizing the blocks");
+  const PolygonIndex water(input.water), parks(input.parks);
+  std::vector<std::pair<std::pair<double, double>, Block>> found;
+  for (Polygon& face : ctx.toPolygons(faces.get())) {
+    const geos::GeomPtr g = ctx.polygon(face);
+    const geos::GeomPtr inner = ctx.own(GEOSPointOnSurface_r(ctx.handle(), g.get()), "a block's inner point");
+    double x = 0, y = 0;
+    GEOSGeomGetX_r(ctx.handle(), inner.get(), &x);
+    GEOSGeomGetY_r(ctx.handle(), inner.get(), &y);
+    const Vec2 p{x, y};
+    if (!land.contains(p) || water.contains(p) || area(face) <= options.nodingTolerance) continue;
+    std::string use = options.defaultUse;
+    if (!parks.empty() && parks.contains(p)) {
+      use = "park";
+    } else if (domain.densitySpec) {
+      const Vec2 px = domain.densitySpec->transform.worldToPixel(p);
+      const int i = static_cast<int>(std::floor(px.x)), j = static_cast<int>(std::floor(px.y));
+      if (!domain.density.inside(i, j) || domain.density.at(i, j) <= 0.0f) use = options.emptyUse;
+    }
+    found.push_back({{y, x}, Block{std::move(face), use}});
+  }
+  std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (auto& f : found) net.blocks.push_back(std::move(f.second));
+  reportProgress(progress, 1.0, "blocks");
+  return net;
+}
+
+}  // namespace urbanvec::streets

@@ -1,0 +1,145 @@
+// Graph noise with Halton sampling (spec chen-streets.md §13.6).
+#include "urbanvec/streets/graph_noise.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace urbanvec::streets {
+
+double halton(int index, int base) {
+  double f = 1.0, r = 0.0;
+  for (int i = index; i > 0; i /= base) {
+    f /= base;
+    r += f * (i % base);
+  }
+  return r;
+}
+
+namespace {
+
+/// The first `fraction` of a line's length from its start.
+LineString headOf(const LineString& line, double fraction) {
+  const double target = fraction * length(line);
+  LineString out{line.front()};
+  double at = 0.0;
+  for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+    const double len = distance(line[i], line[i + 1]);
+    if (at + len >= target) {
+      out.push_back(line[i] + (line[i + 1] - line[i]) * ((target - at) / std::max(len, 1e-300)));
+      return out;
+    }
+    out.push_back(line[i + 1]);
+    at += len;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<Street> applyGraphNoise(const PlanarGraph& graph, const std::vector<StreetLevel>& edgeLevel,
+                                    const GraphNoiseOptions& options) {
+  const int edges = static_cast<int>(graph.edgeCount());
+  std::vector<int> degree(graph.nodeCount());
+  // Street degrees: outline edges (boundary, water) do not count.
+  for (int e = 0; e < static_cast<int>(graph.edgeCount()); ++e)
+    if (edgeLevel[static_cast<std::size_t>(e)] != StreetLevel::Outline) {
+      ++degree[static_cast<std::size_t>(graph.edge(e).a)];
+      ++degree[static_cast<std::size_t>(graph.edge(e).b)];
+    }
+  std::vector<int> minor;
+  Vec2 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()}, hi = lo * -1.0;
+  std::vector<Vec2> mid(static_cast<std::size_t>(edges));
+  for (int e = 0; e < edges; ++e) {
+    const LineString& l = graph.edge(e).line;
+    mid[static_cast<std::size_t>(e)] = (l.front() + l.back()) * 0.5;
+    if (edgeLevel[static_cast<std::size_t>(e)] != StreetLevel::Minor) continue;
+    minor.push_back(e);
+    const Vec2& m = mid[static_cast<std::size_t>(e)];
+    lo = {std::min(lo.x, m.x), std::min(lo.y, m.y)}, hi = {std::max(hi.x, m.x), std::max(hi.y, m.y)};
+  }
+  enum Fate : char { Keep, Delete, Cut };
+  std::vector<char> fate(static_cast<std::size_t>(edges), Keep);
+  std::vector<double> cutFraction(static_cast<std::size_t>(edges), 1.0);
+  std::vector<char> cutFromB(static_cast<std::size_t>(edges), 0);
+  const int full = static_cast<int>(std::lround(options.fullShare * minor.size()));
+  const int partial = static_cast<int>(std::lround(options.partialShare * minor.size()));
+  auto eligible = [&](int e) {
+    return fate[static_cast<std::size_t>(e)] == Keep &&
+           degree[static_cast<std::size_t>(graph.edge(e).a)] >= options.minEndDegree &&
+           degree[static_cast<std::size_t>(graph.edge(e).b)] >= options.minEndDegree;
+  };
+  // Midpoints of the minor edges in buckets of about two edges each.
+  const double extent = std::max({hi.x - lo.x, hi.y - lo.y, 1.0});
+  const double cell = std::max(extent / std::sqrt(std::max<double>(1.0, minor.size() / 2.0)), 1e-6);
+  const int nx = static_cast<int>((hi.x - lo.x) / cell) + 1, ny = static_cast<int>((hi.y - lo.y) / cell) + 1;
+  std::vector<std::vector<int>> buckets(minor.empty() ? 0 : static_cast<std::size_t>(nx) * ny);
+  for (int e : minor) {
+    const Vec2& m = mid[static_cast<std::size_t>(e)];
+    const int i = std::clamp(static_cast<int>((m.x - lo.x) / cell), 0, nx - 1);
+    const int j = std::clamp(static_cast<int>((m.y - lo.y) / cell), 0, ny - 1);
+    buckets[static_cast<std::size_t>(j) * nx + i].push_back(e);
+  }
+  if (minor.empty())
+    return [&] {
+      std::vector<Street> out;
+      for (int e = 0; e < edges; ++e)
+        out.push_back({graph.edge(e).line, edgeLevel[static_cast<std::size_t>(e)], 0});
+      return out;
+    }();
+  int index = options.startIndex, doneFull = 0, donePartial = 0;
+  const int maxTries = 20 * static_cast<int>(minor.size()) + 100;
+  for (int tries = 0; tries < maxTries && (doneFull < full || donePartial < partial); ++tries, ++index) {
+    const Vec2 h{lo.x + halton(index, 2) * (hi.x - lo.x), lo.y + halton(index, 3) * (hi.y - lo.y)};
+    // Nearest eligible edge by its midpoint: rings of buckets outwards until no nearer one can exist.
+    int best = -1;
+    double bestD = std::numeric_limits<double>::infinity();
+    const int ci = std::clamp(static_cast<int>((h.x - lo.x) / cell), 0, nx - 1);
+    const int cj = std::clamp(static_cast<int>((h.y - lo.y) / cell), 0, ny - 1);
+    for (int ring = 0; ring <= nx + ny; ++ring) {
+      const double reach = (ring - 1) * cell;
+      if (ring > 0 && reach > 0 && reach * reach > bestD) break;
+      for (int j = cj - ring; j <= cj + ring; ++j)
+        for (int i = ci - ring; i <= ci + ring; ++i) {
+          if (std::max(std::abs(i - ci), std::abs(j - cj)) != ring || i < 0 || j < 0 || i >= nx || j >= ny)
+            continue;
+          for (int e : buckets[static_cast<std::size_t>(j) * nx + i]) {
+            if (!eligible(e)) continue;
+            const Vec2 d = mid[static_cast<std::size_t>(e)] - h;
+            const double d2 = dot(d, d);
+            if (d2 < bestD || (d2 == bestD && e < best)) bestD = d2, best = e;
+          }
+        }
+    }
+    if (best < 0) break;
+    const bool cut = doneFull >= full || (donePartial < partial && (index % 4) == 0);
+    --degree[static_cast<std::size_t>(graph.edge(best).a)];
+    --degree[static_cast<std::size_t>(graph.edge(best).b)];
+    if (cut) {
+      // The stub keeps 20-60 % of the edge from one end (Halton base 5 for the length, the index's
+      // parity for the end) and still counts at that end.
+      fate[static_cast<std::size_t>(best)] = Cut;
+      cutFraction[static_cast<std::size_t>(best)] = 0.2 + 0.4 * halton(index, 5);
+      cutFromB[static_cast<std::size_t>(best)] = static_cast<char>(index % 2);
+      ++degree[static_cast<std::size_t>(index % 2 ? graph.edge(best).b : graph.edge(best).a)];
+      ++donePartial;
+    } else {
+      fate[static_cast<std::size_t>(best)] = Delete;
+      ++doneFull;
+    }
+  }
+  std::vector<Street> out;
+  for (int e = 0; e < edges; ++e) {
+    const auto k = static_cast<std::size_t>(e);
+    if (fate[k] == Delete) continue;
+    LineString line = graph.edge(e).line;
+    if (fate[k] == Cut) {
+      if (cutFromB[k]) std::reverse(line.begin(), line.end());
+      line = headOf(line, cutFraction[k]);
+    }
+    out.push_back({std::move(line), edgeLevel[k], 0});
+  }
+  return out;
+}
+
+}  // namespace urbanvec::streets

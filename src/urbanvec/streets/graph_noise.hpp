@@ -1,0 +1,38 @@
+// Graph noise (spec chen-streets.md §13.6, Fig. 13): streets that stop and restart. Complete and
+// partial deletions of minor street segments, chosen by Halton points (bases 2 and 3) mapped to the
+// nearest segment, so they are spread evenly and reproducible. A full deletion merges two blocks and
+// turns the crossings at its ends into T-junctions; a partial one leaves a dead end.
+#pragma once
+
+#include <vector>
+
+#include "urbanvec/core/geometry.hpp"
+#include "urbanvec/core/planar_graph.hpp"
+#include "urbanvec/streets/hyperstreamlines.hpp"
+
+namespace urbanvec::streets {
+
+struct GraphNoiseOptions {
+  /// Share of the minor segments (edges between crossings) deleted completely [INFERENCE: the spec
+  /// gives no value; 0.15 turns a regular grid's crossings into a mix of T-junctions and crossings
+  /// inside Boeing's 3-way and 4-way ranges].
+  double fullShare = 0.15;
+  /// Share of the minor segments cut back to a stub of 20-60 % of their length (a dead end).
+  double partialShare = 0.05;
+  /// First Halton index used (spec: reproducible for a fixed start index).
+  int startIndex = 1;
+  /// Only segments whose two ends have at least this street degree are touched: 4 = between two
+  /// crossings, so a deletion turns two crossings into T-junctions and never a T-junction into a bend.
+  int minEndDegree = 4;
+};
+
+/// The pieces that remain: each graph edge's line and level, minus the deleted ones, with cut-back
+/// edges shortened. Only minor edges whose two ends have degree >= minEndDegree at that moment are
+/// touched, so no street is cut off from the network by a full deletion.
+std::vector<Street> applyGraphNoise(const PlanarGraph& graph, const std::vector<StreetLevel>& edgeLevel,
+                                    const GraphNoiseOptions& options);
+
+/// The i-th element of the Halton sequence in a base (radical inverse).
+double halton(int index, int base);
+
+}  // namespace urbanvec::streets

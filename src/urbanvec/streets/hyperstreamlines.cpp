@@ -1,0 +1,431 @@
+// Hyperstreamline tracing (spec chen-streets.md §8.2 RK integration with sign alignment, §8.3
+// stopping criteria and look-ahead, §9.1 interleaving, §9.3 consolidated seeding with priority
+// ω = e^(−d_b/λ), §11 density-modulated d_sep, §12 minor roads ending on major roads).
+#include "urbanvec/streets/hyperstreamlines.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <utility>
+
+#include "urbanvec/core/error.hpp"
+#include "urbanvec/streets/polygon_index.hpp"
+
+namespace urbanvec::streets {
+namespace {
+
+/// Square buckets over the domain (§9.4 spatial acceleration), holding items of type T.
+template <class T>
+class BucketGrid {
+ public:
+  void init(const Vec2& lo, const Vec2& hi, double cell) {
+    origin_ = lo, cell_ = cell;
+    nx_ = static_cast<int>((hi.x - lo.x) / cell) + 1;
+    ny_ = static_cast<int>((hi.y - lo.y) / cell) + 1;
+    cells_.assign(static_cast<std::size_t>(nx_) * ny_, {});
+  }
+  bool empty() const { return cells_.empty(); }
+  /// Calls fn(bucket) for each bucket overlapping the box spanned by a and b (clamped to the grid).
+  template <class Fn>
+  void forBox(const Vec2& a, const Vec2& b, Fn fn) const {
+    if (cells_.empty()) return;
+    const int i0 = col(std::min(a.x, b.x)), i1 = col(std::max(a.x, b.x));
+    const int j0 = row(std::min(a.y, b.y)), j1 = row(std::max(a.y, b.y));
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) fn(cells_[static_cast<std::size_t>(j) * nx_ + i]);
+  }
+  template <class Fn>
+  void forBoxMutable(const Vec2& a, const Vec2& b, Fn fn) {
+    std::as_const(*this).forBox(a, b, [&](const std::vector<T>& c) { fn(const_cast<std::vector<T>&>(c)); });
+  }
+
+ private:
+  int col(double x) const {
+    return std::clamp(static_cast<int>(std::floor((x - origin_.x) / cell_)), 0, nx_ - 1);
+  }
+  int row(double y) const {
+    return std::clamp(static_cast<int>(std::floor((y - origin_.y) / cell_)), 0, ny_ - 1);
+  }
+  Vec2 origin_;
+  double cell_ = 1.0;
+  int nx_ = 0, ny_ = 0;
+  std::vector<std::vector<T>> cells_;
+};
+
+/// Points of finished lines, for the d_sep / d_test distance queries.
+class PointGrid {
+ public:
+  void init(const Vec2& lo, const Vec2& hi, double cell) { grid_.init(lo, hi, cell); }
+  void add(const Vec2& p) {
+    grid_.forBoxMutable(p, p, [&](std::vector<Vec2>& c) { c.push_back(p); });
+  }
+  /// True when some point lies closer than r to p.
+  bool anyWithin(const Vec2& p, double r) const {
+    const double r2 = r * r;
+    bool found = false;
+    grid_.forBox(p - Vec2{r, r}, p + Vec2{r, r}, [&](const std::vector<Vec2>& c) {
+      for (std::size_t k = 0; !found && k < c.size(); ++k) {
+        const Vec2 d = c[k] - p;
+        found = dot(d, d) < r2;
+      }
+    });
+    return found;
+  }
+
+ private:
+  BucketGrid<Vec2> grid_;
+};
+
+/// Segments of finished lines, for crossings (look-ahead joins, minor roads ending on major).
+class SegmentGrid {
+ public:
+  void init(const Vec2& lo, const Vec2& hi, double cell) { grid_.init(lo, hi, cell); }
+  void add(const Vec2& a, const Vec2& b) {
+    const int id = static_cast<int>(segs_.size());
+    segs_.push_back({a, b});
+    grid_.forBoxMutable(a, b, [&](std::vector<int>& c) { c.push_back(id); });
+  }
+  /// The first crossing of p→q with a stored segment at a fraction t > minT, or t > 1 when none.
+  double firstCrossing(const Vec2& p, const Vec2& q, double minT = 0.0) const {
+    double best = 2.0;
+    const Vec2 d = q - p;
+    grid_.forBox(p, q, [&](const std::vector<int>& c) {
+      for (int id : c) {
+        const auto& [a, b] = segs_[static_cast<std::size_t>(id)];
+        const Vec2 f = b - a;
+        const double den = cross(d, f);
+        if (den == 0.0) continue;
+        const double t = cross(a - p, f) / den, u = cross(a - p, d) / den;
+        if (t > minT && t <= 1.0 && u >= 0.0 && u <= 1.0) best = std::min(best, t);
+      }
+    });
+    return best;
+  }
+
+ private:
+  BucketGrid<int> grid_;
+  std::vector<std::pair<Vec2, Vec2>> segs_;
+};
+
+enum class Stop { Boundary, Degenerate, Loop, Length, Close, Junction };
+
+struct Half {
+  LineString points;
+  Stop stop = Stop::Boundary;
+};
+
+class Tracer {
+ public:
+  Tracer(const TensorField& field, const TraceDomain& domain, const TraceOptions& o, TraceStats& stats)
+      : field_(field),
+        domain_(domain),
+        o_(o),
+        stats_(stats),
+        land_(domain.land),
+        water_(domain.water),
+        parks_(domain.parks) {
+    h_ = o.step > 0.0 ? o.step : 0.5 * field.cellSize();
+    referenceR_ = field.medianMagnitude();
+    lo_ = field.origin();
+    hi_ = field.vertex(field.width() - 1, field.height() - 1);
+    maxLength_ = o.maxLength > 0.0 ? o.maxLength : 2.0 * distance(lo_, hi_);
+    for (int l = 0; l < 2; ++l)
+      for (int f = 0; f < 2; ++f) points_[l][f].init(lo_, hi_, base(static_cast<StreetLevel>(l)));
+    all_.init(lo_, hi_, o.minorDsep);
+    major_.init(lo_, hi_, o.minorDsep);
+  }
+
+  void run(const std::vector<Vec2>& seeds, const Progress& progress) {
+    traceLevel(StreetLevel::Major, seeds, subProgress(progress, 0.0, o_.minorRoads ? 0.4 : 1.0));
+    if (o_.minorRoads) {
+      // Minor roads are traced region by region, the major roads bounding the regions (§12): their
+      // seeds lie on each side of every major road, every minor d_sep, and a minor road ends where it
+      // meets a major road (a T-junction). The regions on the two sides are seeded independently, so
+      // the two sides start half a spacing apart rather than lining up into crossings [INFERENCE].
+      std::vector<std::pair<Vec2, int>> onMajor;
+      for (const Street& s : streets_) {
+        placeSeeds(s, StreetLevel::Minor, onMajor, 0.0, o_.sideOffset);
+        placeSeeds(s, StreetLevel::Minor, onMajor, 0.5, -o_.sideOffset);
+      }
+      std::vector<Vec2> minorSeeds;
+      traceLevel(StreetLevel::Minor, minorSeeds, subProgress(progress, 0.4, 1.0), onMajor);
+    }
+    reportProgress(progress, 1.0, "tracing");
+  }
+
+  std::vector<Street> streets_;
+
+ private:
+  double base(StreetLevel l) const { return l == StreetLevel::Major ? o_.majorDsep : o_.minorDsep; }
+
+  /// §11: d_sep(p) = d_sep (1 + (maxFactor − 1)(1 − P)^γ), × parkFactor in parks.
+  double dsep(StreetLevel l, const Vec2& p) const {
+    double f = 1.0;
+    if (domain_.densitySpec) {
+      const Vec2 px = domain_.densitySpec->transform.worldToPixel(p);
+      const int i = static_cast<int>(std::floor(px.x)), j = static_cast<int>(std::floor(px.y));
+      const double P =
+          domain_.density.inside(i, j) ? std::clamp<double>(domain_.density.at(i, j), 0.0, 1.0) : 0.0;
+      f = 1.0 + (o_.densityMaxFactor - 1.0) * std::pow(1.0 - P, o_.densityGamma);
+    }
+    if (!parks_.empty() && parks_.contains(p)) f *= o_.parkFactor;
+    return base(l) * f;
+  }
+
+  bool onLand(const Vec2& p) const { return (land_.empty() || land_.contains(p)) && !water_.contains(p); }
+
+  /// The family's unit eigenvector at p, aligned with `ref` (§8.2: E·V_pre >= 0); false at a degenerate
+  /// point.
+  bool eig(const Vec2& p, int family, const Vec2& ref, Vec2& out) const {
+    const Tensor t = field_.sample(p);
+    if (t.magnitude() <= o_.degenerateEpsilon * referenceR_ || t.magnitude() == 0.0) return false;
+    out = family == 0 ? t.major() : t.minor();
+    if (dot(out, ref) < 0.0) out = out * -1.0;
+    return true;
+  }
+
+  /// One classical RK4 step of length h along the family, aligned at every stage.
+  bool step(const Vec2& p, const Vec2& dir, int family, Vec2& q) const {
+    Vec2 k1, k2, k3, k4;
+    if (!eig(p, family, dir, k1) || !eig(p + k1 * (h_ / 2), family, k1, k2) ||
+        !eig(p + k2 * (h_ / 2), family, k2, k3) || !eig(p + k3 * h_, family, k3, k4))
+      return false;
+    const Vec2 v = (k1 + k2 * 2.0 + k3 * 2.0 + k4) / 6.0;
+    const double len = length(v);
+    if (len == 0.0) return false;
+    q = p + v * (h_ / len);
+    return true;
+  }
+
+  /// Fraction of p→q before it leaves the land (boundary or water), > 1 when it stays.
+  double exitFraction(const Vec2& p, const Vec2& q) const {
+    return std::min(land_.firstCrossing(p, q), water_.firstCrossing(p, q));
+  }
+
+  bool tooClose(StreetLevel l, int family, const Vec2& p, double r) const {
+    if (points_[static_cast<int>(l)][family].anyWithin(p, r)) return true;
+    return l == StreetLevel::Minor && points_[0][family].anyWithin(p, r);
+  }
+
+  /// §8.3 look-ahead: keep integrating (ignoring criteria 4 and 5) for d_lookahead; keep the part up
+  /// to the first crossing of any street, else try the straight continuation; else nothing.
+  bool lookAhead(StreetLevel l, int family, LineString& pts, Vec2 dir) {
+    const double reach = o_.lookaheadRatio * dsep(l, pts.back());
+    if (reach <= 0.0) return false;
+    LineString ext;
+    Vec2 p = pts.back();
+    double travelled = 0.0;
+    while (travelled < reach) {
+      Vec2 q;
+      if (!step(p, dir, family, q)) break;
+      if (exitFraction(p, q) <= 1.0 || !onLand(q)) break;
+      const double t = all_.firstCrossing(p, q);
+      if (t <= 1.0) {
+        ext.push_back(p + (q - p) * t);
+        pts.insert(pts.end(), ext.begin(), ext.end());
+        return true;
+      }
+      ext.push_back(q);
+      travelled += distance(p, q);
+      dir = q - p;
+      p = q;
+    }
+    // Straight continuation from the stop.
+    const Vec2 from = pts.back();
+    const Vec2 d = dir / std::max(length(dir), 1e-300);
+    const Vec2 to = from + d * reach;
+    const double t = all_.firstCrossing(from, to, 1e-9);
+    if (t <= 1.0 && exitFraction(from, to) > t && onLand(from + (to - from) * (0.5 * t))) {
+      pts.push_back(from + (to - from) * t);
+      return true;
+    }
+    return false;
+  }
+
+  Half traceHalf(const Vec2& seed, StreetLevel l, int family, double sign) {
+    Half half;
+    half.points.push_back(seed);
+    Vec2 dir;
+    if (!eig(seed, family, {1.0, 0.0}, dir)) {
+      half.stop = Stop::Degenerate;
+      return half;
+    }
+    dir = dir * sign;
+    Vec2 p = seed;
+    double travelled = 0.0;
+    const double loopEps = o_.loopRatio * o_.dtestRatio * base(l);
+    for (bool first = true;; first = false) {
+      Vec2 q;
+      if (!step(p, dir, family, q)) {
+        half.stop = Stop::Degenerate;
+        return half;
+      }
+      const double tb = exitFraction(p, q);
+      if (tb <= 1.0) {
+        half.points.push_back(p + (q - p) * tb);
+        half.stop = Stop::Boundary;
+        return half;
+      }
+      if (!onLand(q)) {  // left through the very point it started on (a seed on the boundary)
+        half.stop = Stop::Boundary;
+        return half;
+      }
+      if (l == StreetLevel::Minor) {
+        const double tm = major_.firstCrossing(p, q, first ? 1e-6 : 0.0);
+        if (tm <= 1.0) {
+          half.points.push_back(p + (q - p) * tm);
+          half.stop = Stop::Junction;
+          return half;
+        }
+      }
+      travelled += h_;
+      if (travelled > 2.0 * base(l) && distanceToSegment(seed, p, q) < loopEps) {
+        half.points.push_back(seed);
+        half.stop = Stop::Loop;
+        return half;
+      }
+      const bool close = tooClose(l, family, q, o_.dtestRatio * dsep(l, q));
+      if (close || travelled > maxLength_) {
+        half.stop = close ? Stop::Close : Stop::Length;
+        if (lookAhead(l, family, half.points, q - p)) {
+          ++stats_.lookaheadJoins;
+          half.stop = Stop::Junction;
+        }
+        return half;
+      }
+      half.points.push_back(q);
+      dir = q - p;
+      p = q;
+    }
+  }
+
+  bool validSeed(const Vec2& s, StreetLevel l, int family) const {
+    return onLand(s) && !tooClose(l, family, s, dsep(l, s) * (1.0 - 1e-6));
+  }
+
+  /// Traces both directions from s and joins them through s.
+  LineString trace(const Vec2& s, StreetLevel l, int family) {
+    Half forward = traceHalf(s, l, family, 1.0);
+    if (forward.stop == Stop::Loop) return forward.points;
+    Half backward = traceHalf(s, l, family, -1.0);
+    LineString line(backward.points.rbegin(), backward.points.rend());
+    line.insert(line.end(), forward.points.begin() + 1, forward.points.end());
+    return line;
+  }
+
+  void insert(const LineString& line, StreetLevel l, int family) {
+    for (const Vec2& p : line) points_[static_cast<int>(l)][family].add(p);
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+      all_.add(line[i], line[i + 1]);
+      if (l == StreetLevel::Major) major_.add(line[i], line[i + 1]);
+    }
+    streets_.push_back({line, l, family});
+  }
+
+  /// Seeds for the other family (or, for minor roads on a major road, the crossing family) every
+  /// d_sep along a street (§9.1 step 2).
+  /// `phase`: the first seed lies phase × d_sep from the start; `offset`: seeds lie this far to the
+  /// left (negative: right) of the street.
+  void placeSeeds(const Street& s, StreetLevel l, std::vector<std::pair<Vec2, int>>& out, double phase = 0.0,
+                  double offset = 0.0) const {
+    const int other = 1 - s.family;
+    double next = phase * dsep(l, s.line.front()), at = 0.0;
+    for (std::size_t i = 0; i + 1 < s.line.size(); ++i) {
+      const Vec2 a = s.line[i], b = s.line[i + 1];
+      const double len = distance(a, b);
+      if (len <= 0.0) continue;
+      const Vec2 normal{-(b.y - a.y) / len, (b.x - a.x) / len};
+      while (next <= at + len) {
+        const Vec2 p = a + (b - a) * ((next - at) / len) + normal * offset;
+        out.push_back({p, other});
+        next += dsep(l, p);
+      }
+      at += len;
+    }
+  }
+
+  void traceLevel(StreetLevel l, const std::vector<Vec2>& seeds, const Progress& progress,
+                  const std::vector<std::pair<Vec2, int>>& initial = {}) {
+    std::deque<Vec2> queue[2];
+    for (const Vec2& s : seeds) queue[0].push_back(s), queue[1].push_back(s);
+    for (const auto& [p, f] : initial) queue[f].push_back(p);
+    // Candidates covering the land every d_sep / 2, by priority ω = e^(−d_b/λ) (§9.2, §9.3).
+    std::vector<std::pair<double, Vec2>> candidates;
+    const double spacing = 0.5 * base(l), lambda = o_.priorityScaleRatio * base(l);
+    for (double y = lo_.y + spacing / 2; y < hi_.y; y += spacing)
+      for (double x = lo_.x + spacing / 2; x < hi_.x; x += spacing) {
+        const Vec2 p{x, y};
+        if (!onLand(p)) continue;
+        const double db = water_.empty() ? std::numeric_limits<double>::infinity()
+                                         : water_.distanceToEdge(p, 20.0 * lambda);
+        candidates.push_back({std::exp(-db / lambda), p});
+      }
+    std::stable_sort(candidates.begin(), candidates.end(),
+                     [](const auto& a, const auto& b) { return a.first > b.first; });
+    std::size_t next = 0;
+    int family = 0;
+    ProgressTicker ticker(progress, l == StreetLevel::Major ? "major roads" : "minor roads",
+                          2 * candidates.size());
+    for (;;) {
+      if (queue[family].empty()) family = 1 - family;
+      if (queue[family].empty()) {
+        // Both queues empty: the next candidate that is a valid seed for either family.
+        bool found = false;
+        while (!found && next < 2 * candidates.size()) {
+          const Vec2 p = candidates[next / 2].second;
+          const int f = static_cast<int>(next % 2);
+          ++next;
+          ticker.tick();
+          if (validSeed(p, l, f)) queue[f].push_back(p), family = f, found = true;
+        }
+        if (!found) break;
+      }
+      const Vec2 s = queue[family].front();
+      queue[family].pop_front();
+      ++stats_.seedsTried;
+      if (!validSeed(s, l, family)) continue;
+      LineString line = trace(s, l, family);
+      if (length(line) < o_.minLengthRatio * dsep(l, s)) {
+        ++stats_.droppedShort;
+        family = 1 - family;
+        continue;
+      }
+      insert(line, l, family);
+      std::vector<std::pair<Vec2, int>> more;
+      placeSeeds(streets_.back(), l, more);
+      for (const auto& [p, f] : more) queue[f].push_back(p);
+      family = 1 - family;
+    }
+    ticker.finish();
+  }
+
+  const TensorField& field_;
+  const TraceDomain& domain_;
+  TraceOptions o_;
+  TraceStats& stats_;
+  PolygonIndex land_, water_, parks_;
+  double h_ = 1.0, referenceR_ = 0.0, maxLength_ = 0.0;
+  Vec2 lo_, hi_;
+  PointGrid points_[2][2];
+  SegmentGrid all_, major_;
+};
+
+}  // namespace
+
+std::vector<Street> traceStreets(const TensorField& field, const TraceDomain& domain,
+                                 const std::vector<Vec2>& seeds, const TraceOptions& options,
+                                 TraceStats* stats, const Progress& progress) {
+  if (!(options.majorDsep > 0.0) || !(options.minorDsep > 0.0))
+    throw invalidOption("d_sep must be > 0 (major " + std::to_string(options.majorDsep) + ", minor " +
+                        std::to_string(options.minorDsep) + ")");
+  if (!(options.dtestRatio > 0.0) || options.dtestRatio > 1.0)
+    throw invalidOption("d_test must lie in (0, d_sep]: the d_test ratio " +
+                        std::to_string(options.dtestRatio) + " is not in (0, 1]");
+  TraceStats local;
+  Tracer tracer(field, domain, options, stats ? *stats : local);
+  tracer.run(seeds, progress);
+  return std::move(tracer.streets_);
+}
+
+}  // namespace urbanvec::streets

@@ -1,0 +1,85 @@
+// Street tracing along hyperstreamlines (spec chen-streets.md §8 integration and stopping, §9
+// interleaved seeding, §11 density, §12 minor roads): major roads first, then minor roads that end
+// on them, both levels interleaving the major and minor eigenvector families; RK4 with sign
+// alignment at every stage, d_sep / d_test separation within a family, look-ahead joins that turn
+// dangling ends into T-junctions. All lengths in metres.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "urbanvec/core/geometry.hpp"
+#include "urbanvec/core/grid.hpp"
+#include "urbanvec/core/progress.hpp"
+#include "urbanvec/streets/tensor_field.hpp"
+
+namespace urbanvec::streets {
+
+struct TraceOptions {
+  /// d_sep of major roads (m). The spec's domain/8 suits its unit-square scenes, not real cities of
+  /// any size [INFERENCE]: 4 × the minor d_sep, the spec's major/minor ratio (§16).
+  double majorDsep = 360.0;
+  /// d_sep of minor roads (m): the spec's major / 4 (§16), a typical urban block side.
+  double minorDsep = 90.0;
+  /// d_test = ratio × d_sep (Jobard & Lefer, spec §8.3 and §16: 0.5).
+  double dtestRatio = 0.5;
+  /// Look-ahead d_lookahead = ratio × d_sep (spec §16: 1.0).
+  double lookaheadRatio = 1.0;
+  /// Integration step (m); 0 = half a field cell (spec §8.2: h_max about 0.5 cell).
+  double step = 0.0;
+  /// Lines shorter than ratio × d_sep are dropped (spec §8.3 "Minimum length": 0.5 d_sep).
+  double minLengthRatio = 0.5;
+  /// Loop closing: after 2 d_sep of travel, passing within ratio × d_test of its seed. The spec's
+  /// min(0.5 h, 0.1 d_sep) (§16) misses loops of a smoothed, interpolated field, which spiral by more
+  /// than half a step per turn and then wind round until the maximum length [ADAPTED].
+  double loopRatio = 0.25;
+  /// Degenerate point: |T| < epsilon × median |T| (spec §16: 1e-6).
+  double degenerateEpsilon = 1e-6;
+  /// Maximum length of one street (m); 0 = the domain's diagonal (spec §8.3).
+  double maxLength = 0.0;
+  /// Density mapping d_sep(p) = d_sep + (maxFactor − 1) d_sep (1 − P(p))^gamma (spec §11: 3, 1).
+  double densityMaxFactor = 3.0;
+  double densityGamma = 1.0;
+  /// d_sep is multiplied by this inside parks (spec §11: 2).
+  double parkFactor = 2.0;
+  /// Seed priority ω = e^(−d_b / λ) with λ = this × d_sep (spec §9.3: λ_ω = d_sep).
+  double priorityScaleRatio = 1.0;
+  /// Trace minor roads (the second level).
+  bool minorRoads = true;
+  /// Minor-road seeds lie this far (m) beside the major road they start from, so that they begin in
+  /// one region and end on the road (well above the noding tolerance).
+  double sideOffset = 0.5;
+};
+
+/// Where streets may grow.
+struct TraceDomain {
+  MultiPolygon land;   ///< the boundary: streets stay inside
+  MultiPolygon water;  ///< no street inside
+  MultiPolygon parks;  ///< d_sep × parkFactor inside
+  /// Population density normalised to [0, 1] on its frame (empty = P ≡ 1, d_sep everywhere).
+  std::optional<GridSpec> densitySpec;
+  Grid<float> density;
+};
+
+/// Outline marks the boundary and water outlines noded with the streets (for the blocks).
+enum class StreetLevel : std::uint8_t { Major = 0, Minor = 1, Outline = 2 };
+
+struct Street {
+  LineString line;
+  StreetLevel level = StreetLevel::Major;
+  int family = 0;  ///< 0 = major eigenvector, 1 = minor eigenvector
+};
+
+struct TraceStats {
+  std::size_t seedsTried = 0;
+  std::size_t lookaheadJoins = 0;
+  std::size_t droppedShort = 0;
+};
+
+/// Traces the network. `seeds` are tried first (design-element positions), in order.
+std::vector<Street> traceStreets(const TensorField& field, const TraceDomain& domain,
+                                 const std::vector<Vec2>& seeds, const TraceOptions& options,
+                                 TraceStats* stats = nullptr, const Progress& progress = {});
+
+}  // namespace urbanvec::streets

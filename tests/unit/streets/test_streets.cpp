@@ -1,0 +1,367 @@
+// Tensor field and street tracing (spec chen-streets.md §19 acceptance checks) on scenes with known
+// answers.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "urbanvec/core/error.hpp"
+#include "urbanvec/streets/generate_streets.hpp"
+#include "urbanvec/streets/graph_noise.hpp"
+#include "urbanvec/streets/polygon_index.hpp"
+#include "urbanvec/streets/street_metrics.hpp"
+#include "urbanvec/streets/tensor_field.hpp"
+
+using namespace urbanvec;
+using namespace urbanvec::streets;
+
+namespace {
+
+/// Angle between two directions modulo pi, in degrees.
+double lineAngleDeg(double a, double b) {
+  double d = std::fmod(std::abs(a - b), M_PI);
+  return std::min(d, M_PI - d) * 180.0 / M_PI;
+}
+
+MultiPolygon square(double x0, double y0, double side) {
+  return {{{{x0, y0}, {x0 + side, y0}, {x0 + side, y0 + side}, {x0, y0 + side}, {x0, y0}}, {}}};
+}
+
+StreetsOptions quiet() {
+  StreetsOptions o;
+  o.field.noiseAmplitude = 0.0;
+  o.noise.fullShare = 0.0;
+  o.noise.partialShare = 0.0;
+  return o;
+}
+
+}  // namespace
+
+TEST(Tensor, RoundTripAndPeriodicity) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> angle(0.0, 2 * M_PI), mag(0.1, 10.0);
+  for (int i = 0; i < 1000; ++i) {
+    const double theta = angle(rng), r = mag(rng);
+    const Tensor t = Tensor::fromAngle(theta, r);
+    EXPECT_NEAR(t.magnitude(), r, 1e-10 * r);
+    EXPECT_LT(lineAngleDeg(t.angle(), theta), 1e-8);
+    const Tensor u = Tensor::fromAngle(theta + M_PI, r);
+    EXPECT_NEAR(t.a, u.a, 1e-9);
+    EXPECT_NEAR(t.b, u.b, 1e-9);
+    // From a direction vector (Eq. 1 without trigonometry), including ux = 0.
+    const Tensor v = Tensor::fromDirection({std::cos(theta) * r, std::sin(theta) * r});
+    EXPECT_NEAR(v.a, t.a, 1e-9);
+    EXPECT_NEAR(v.b, t.b, 1e-9);
+  }
+  const Tensor vertical = Tensor::fromDirection({0.0, 2.0});
+  EXPECT_LT(lineAngleDeg(vertical.angle(), M_PI / 2), 1e-12);
+}
+
+TEST(Tensor, RadialElementHasCircularMajorAndRadialMinor) {
+  DesignElement e;
+  e.kind = ElementKind::Radial;
+  e.position = {100, 200};
+  e.size = 1.0;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-500, 500);
+  for (int i = 0; i < 1000; ++i) {
+    const Vec2 p{100 + u(rng), 200 + u(rng)};
+    const Vec2 r = p - e.position;
+    const Tensor t = basisTensor(e, p);
+    EXPECT_LT(std::abs(dot(t.major(), r)) / length(r), 1e-9);
+    EXPECT_LT(std::abs(cross(t.minor(), r)), 1e-9 * length(r));
+    EXPECT_NEAR(t.magnitude(), dot(r, r), 1e-12 * dot(r, r));
+  }
+}
+
+TEST(TensorField, HeightFieldMinorFollowsTheGradient) {
+  // H = 0.03 x + 0.04 y on a 10 m raster: minor ∥ (3, 4), major ∥ (−4, 3), R = slope 0.05.
+  HeightMap dem;
+  dem.spec.width = dem.spec.height = 100;
+  dem.spec.transform.c = {0, 10, 0, 1000, 0, -10};
+  dem.heights = Grid<float>(100, 100);
+  for (int r = 0; r < 100; ++r)
+    for (int c = 0; c < 100; ++c) {
+      const Vec2 w = dem.spec.cellCentre(c, r);
+      dem.heights.at(c, r) = static_cast<float>(0.03 * w.x + 0.04 * w.y);
+    }
+  FieldOptions o;
+  o.cellSize = 20;
+  o.heightWeight = 1.0;
+  o.noiseAmplitude = 0;
+  o.smoothingIterations = 0;
+  const TensorField f = buildField({200, 200}, {800, 800}, {}, &dem, o);
+  const Tensor t = f.sample({500, 500});
+  EXPECT_LT(lineAngleDeg(t.angle(), std::atan2(3.0, -4.0)), 0.01);
+  EXPECT_LT(lineAngleDeg(std::atan2(t.minor().y, t.minor().x), std::atan2(4.0, 3.0)), 0.01);
+  EXPECT_NEAR(t.magnitude(), 0.05, 1e-4);
+}
+
+TEST(TensorField, Eq3BlendingIsLocalNearEachElement) {
+  // Two grid elements at 0 and 45 degrees 1000 m apart with d D^2 = 20.
+  const double D = 1000.0, d = 20.0 / (D * D);
+  DesignElement a, b;
+  a.position = {0, 0}, a.angle = 0.0, a.decay = d;
+  b.position = {D, 0}, b.angle = M_PI / 4, b.decay = d;
+  FieldOptions o;
+  o.cellSize = 10;
+  o.smoothingIterations = 0;
+  o.noiseAmplitude = 0;
+  const TensorField f = buildField({-200, -200}, {D + 200, 200}, {a, b}, nullptr, o);
+  EXPECT_LT(lineAngleDeg(f.sample({0.05 * D, 0}).angle(), 0.0), 0.5);
+  EXPECT_LT(lineAngleDeg(f.sample({0.95 * D, 0}).angle(), M_PI / 4), 0.5);
+  // Monotonic in between.
+  double last = -1.0;
+  for (double x = 0; x <= D; x += D / 50) {
+    const double ang = f.sample({x, 0}).angle();
+    EXPECT_GE(ang, last - 1e-9);
+    last = ang;
+  }
+  EXPECT_THROW(buildField({0, 0}, {1, 1}, {}, nullptr, o), Error);
+}
+
+TEST(Streets, GridSceneIsAGridOfFourWayCrossings) {
+  // One grid element at 30 degrees, major roads only, no noise: both families straight at 30 and 120
+  // degrees, spaced d_sep; interior crossings are 4-way.
+  StreetsInput in;
+  in.boundary = square(0, 0, 3000);
+  DesignElement e;
+  e.position = {1500, 1500};
+  e.angle = 30.0 * M_PI / 180.0;
+  in.design = {e};
+  StreetsOptions o = quiet();
+  o.trace.majorDsep = 200;
+  o.trace.minorDsep = 100;
+  o.trace.minorRoads = false;
+  const StreetNetwork net = generateStreets(in, o);
+  ASSERT_GT(net.streets.size(), 50u);
+  for (const StreetEdge& s : net.streets)
+    for (std::size_t i = 0; i + 1 < s.line.size(); ++i) {
+      const Vec2 d = s.line[i + 1] - s.line[i];
+      if (length(d) < 1.0) continue;
+      const double ang = std::atan2(d.y, d.x);
+      EXPECT_LT(std::min(lineAngleDeg(ang, e.angle), lineAngleDeg(ang, e.angle + M_PI / 2)), 0.5);
+    }
+  int interior = 0, fourWay = 0;
+  for (const StreetNode& n : net.nodes) {
+    if (n.p.x < 200 || n.p.y < 200 || n.p.x > 2800 || n.p.y > 2800) continue;
+    ++interior;
+    fourWay += n.degree == 4;
+  }
+  ASSERT_GT(interior, 50);
+  EXPECT_GE(fourWay, 0.95 * interior);
+  // Spacing: 3000² m² / (200 m)² = 225 blocks, minus those cut by the boundary.
+  const StreetMetrics m = measureStreets(
+      [&] {
+        std::vector<LineString> l;
+        for (const StreetEdge& s : net.streets) l.push_back(s.line);
+        return l;
+      }(),
+      {}, square(300, 300, 2400));
+  EXPECT_NEAR(m.medianEdgeLength, 200.0, 10.0);
+  EXPECT_NEAR(m.orientationEntropy, std::log(4.0), 1e-9);
+}
+
+TEST(Streets, NoStreetInWaterAllInsideBoundaryEveryCrossingANode) {
+  StreetsInput in;
+  in.boundary = square(0, 0, 2000);
+  in.water = {{{{700, -100}, {1000, -100}, {1100, 2100}, {800, 2100}, {700, -100}}, {}}};  // a river
+  DesignElement e;
+  e.position = {300, 300};
+  e.angle = 0.3;
+  in.design = {e};
+  StreetsOptions o;  // defaults: noise and graph noise on
+  o.trace.majorDsep = 240;
+  o.trace.minorDsep = 80;
+  const StreetNetwork net = generateStreets(in, o);
+  ASSERT_GT(net.streets.size(), 30u);
+  const PolygonIndex water(in.water);
+  for (const StreetEdge& s : net.streets) {
+    EXPECT_GT(length(s.line), 0.0);
+    for (std::size_t i = 0; i + 1 < s.line.size(); ++i) {
+      const Vec2 mid = (s.line[i] + s.line[i + 1]) * 0.5;
+      EXPECT_FALSE(water.contains(mid)) << mid.x << " " << mid.y;
+      EXPECT_GE(mid.x, -1e-6);
+      EXPECT_LE(mid.x, 2000 + 1e-6);
+      EXPECT_GE(mid.y, -1e-6);
+      EXPECT_LE(mid.y, 2000 + 1e-6);
+    }
+  }
+  // Re-noding the output adds no node: every crossing already is one.
+  std::vector<LineString> lines;
+  for (const StreetEdge& s : net.streets) lines.push_back(s.line);
+  const SimplifiedNetwork again = simplifyNetwork(lines, {});
+  std::size_t chainEnds = 0;
+  for (int n = 0; n < static_cast<int>(again.graph.nodeCount()); ++n) chainEnds += again.graph.degree(n) != 2;
+  std::size_t outputEnds = 0;
+  for (const StreetNode& n : net.nodes) outputEnds += n.degree != 2;
+  EXPECT_EQ(chainEnds, outputEnds);
+  // Blocks lie on land and their areas add up to at most the land area.
+  double blockArea = 0.0;
+  for (const Block& b : net.blocks) {
+    blockArea += area(b.shape);
+    EXPECT_EQ(b.landUse, "residential");
+  }
+  // The river covers 0.6 km² of the 4 km²: blocks fill most of the rest and none of it.
+  EXPECT_GT(blockArea, 0.8 * (4e6 - 6e5));
+  EXPECT_LE(blockArea, (4e6 - 6e5) * (1.0 + 1e-6));
+}
+
+TEST(Streets, DeterministicForAnyThreadCount) {
+  StreetsInput in;
+  in.boundary = square(0, 0, 1500);
+  DesignElement g, r;
+  g.position = {400, 400}, g.angle = 0.5;
+  r.kind = ElementKind::Radial, r.position = {1100, 1000}, r.size = 200;
+  in.design = {g, r};
+  StreetsOptions o;
+  o.trace.majorDsep = 200;
+  o.trace.minorDsep = 80;
+  o.field.threads = 1;
+  const StreetNetwork a = generateStreets(in, o);
+  o.field.threads = 3;
+  const StreetNetwork b = generateStreets(in, o);
+  ASSERT_EQ(a.streets.size(), b.streets.size());
+  for (std::size_t i = 0; i < a.streets.size(); ++i) ASSERT_EQ(a.streets[i].line, b.streets[i].line);
+  // Another seed moves the noise and the graph noise.
+  o.field.seed = 2;
+  o.noise.startIndex = 3;
+  const StreetNetwork c = generateStreets(in, o);
+  bool differs = c.streets.size() != a.streets.size();
+  for (std::size_t i = 0; !differs && i < a.streets.size(); ++i)
+    differs = a.streets[i].line != c.streets[i].line;
+  EXPECT_TRUE(differs);
+}
+
+TEST(Streets, LookAheadTurnsDanglingEndsIntoJunctions) {
+  // Two grid elements at different angles: lines converge and stop; look-ahead joins them.
+  StreetsInput in;
+  in.boundary = square(0, 0, 2000);
+  DesignElement a, b;
+  a.position = {300, 1000}, a.angle = 0.0, a.decay = 1.0 / (600.0 * 600.0);
+  b.position = {1700, 1000}, b.angle = 0.6, b.decay = 1.0 / (600.0 * 600.0);
+  in.design = {a, b};
+  StreetsOptions o = quiet();
+  o.trace.majorDsep = 200;
+  o.trace.minorDsep = 100;
+  auto deadEnds = [&](double ratio) {
+    o.trace.lookaheadRatio = ratio;
+    const StreetNetwork net = generateStreets(in, o);
+    int dead = 0;
+    for (const StreetNode& n : net.nodes)
+      dead += n.degree == 1 && n.p.x > 1 && n.p.y > 1 && n.p.x < 1999 && n.p.y < 1999;
+    return dead;
+  };
+  const int without = deadEnds(0.0), with = deadEnds(1.0);
+  EXPECT_LT(with, without);
+}
+
+TEST(Streets, BadInputIsRefused) {
+  StreetsInput in;
+  in.boundary = square(0, 0, 1000);
+  StreetsOptions o;
+  EXPECT_THROW(generateStreets(in, o), Error);  // empty design
+  DesignElement e;
+  e.position = {2000, 2000};
+  in.design = {e};
+  EXPECT_THROW(generateStreets(in, o), Error);  // outside the boundary
+  in.design[0].position = {500, 500};
+  o.trace.dtestRatio = 1.5;
+  EXPECT_THROW(generateStreets(in, o), Error);  // d_test > d_sep
+  o.trace.dtestRatio = 0.5;
+  o.trace.minorDsep = 0;
+  EXPECT_THROW(generateStreets(in, o), Error);
+  o.trace.minorDsep = 50;
+  in.design.assign(o.maxDesignElements + 1, in.design[0]);
+  EXPECT_THROW(generateStreets(in, o), Error);
+  // Water over everything: an empty network, no error.
+  in.design.resize(1);
+  in.water = square(-10, -10, 1020);
+  const StreetNetwork net = generateStreets(in, o);
+  EXPECT_TRUE(net.streets.empty());
+  EXPECT_TRUE(net.blocks.empty());
+}
+
+TEST(GraphNoise, HaltonAndCounts) {
+  EXPECT_DOUBLE_EQ(halton(1, 2), 0.5);
+  EXPECT_DOUBLE_EQ(halton(2, 2), 0.25);
+  EXPECT_DOUBLE_EQ(halton(3, 2), 0.75);
+  EXPECT_NEAR(halton(1, 3), 1.0 / 3.0, 1e-15);
+  EXPECT_NEAR(halton(5, 3), 7.0 / 9.0, 1e-15);
+  // A 10 x 10 grid of minor streets: 20 % of its 180 inner segments go, all ends stay crossings.
+  std::vector<LineString> lines;
+  for (int i = 0; i < 10; ++i) {
+    lines.push_back({{i * 100.0, -50}, {i * 100.0, 950}});
+    lines.push_back({{-50, i * 100.0}, {950, i * 100.0}});
+  }
+  const PlanarGraph g = PlanarGraph::fromLines(lines);
+  std::vector<StreetLevel> levels(g.edgeCount(), StreetLevel::Minor);
+  GraphNoiseOptions o;
+  o.fullShare = 0.1;
+  o.partialShare = 0.0;
+  const std::vector<Street> kept = applyGraphNoise(g, levels, o);
+  EXPECT_EQ(g.edgeCount() - kept.size(), static_cast<std::size_t>(std::lround(0.1 * g.edgeCount())));
+  const StreetMetrics m = measureStreets(
+      [&] {
+        std::vector<LineString> l;
+        for (const Street& s : kept) l.push_back(s.line);
+        return l;
+      }(),
+      {});
+  EXPECT_GT(m.share3Way, 0.2);
+  EXPECT_NEAR(m.shareDeadEnd * m.nodes, 40.0, 1e-9);  // only the 40 original ends are dead ends
+}
+
+TEST(Streets, DensityAndParksWidenTheSpacing) {
+  // A density ramp, 0 on the westmost 500 m and rising to 1 in the east: blocks are larger where
+  // density is low (spec §19.2 check 22); then a park over the north half.
+  StreetsInput in;
+  in.boundary = square(0, 0, 3000);
+  DesignElement e;
+  e.position = {1500, 1500};
+  in.design = {e};
+  GridSpec spec;
+  spec.width = spec.height = 30;
+  spec.transform.c = {0, 100, 0, 3000, 0, -100};
+  in.densitySpec = spec;
+  in.density = Grid<float>(30, 30);
+  for (int r = 0; r < 30; ++r)
+    for (int c = 0; c < 30; ++c) in.density.at(c, r) = std::max(0.0f, static_cast<float>(c - 5) / 24.0f);
+  StreetsOptions o = quiet();
+  o.trace.majorDsep = 240;
+  o.trace.minorDsep = 80;
+  const StreetNetwork net = generateStreets(in, o);
+  double westArea = 0, eastArea = 0;
+  int west = 0, east = 0;
+  for (const Block& b : net.blocks) {
+    Vec2 c;
+    for (std::size_t i = 0; i + 1 < b.shape.outer.size(); ++i) c += b.shape.outer[i];
+    c = c / static_cast<double>(b.shape.outer.size() - 1);
+    if (c.x < 1000) westArea += area(b.shape), ++west;
+    if (c.x > 2000) eastArea += area(b.shape), ++east;
+  }
+  ASSERT_GT(west, 0);
+  ASSERT_GT(east, 0);
+  // d_sep is about 2.5x in the west: mean blocks several times larger.
+  EXPECT_GT(westArea / west, 2.0 * eastArea / east);
+  // Blocks where the raster is 0 (the westmost 500 m) get the empty use; others residential.
+  bool unused = false;
+  for (const Block& b : net.blocks) unused |= b.landUse == "unused";
+  EXPECT_TRUE(unused);
+
+  // A park over the north half: fewer streets there than in the south.
+  StreetsInput withPark;
+  withPark.boundary = in.boundary;
+  withPark.design = in.design;
+  withPark.parks = {{{{0, 1500}, {3000, 1500}, {3000, 3000}, {0, 3000}, {0, 1500}}, {}}};
+  const StreetNetwork parked = generateStreets(withPark, o);
+  double north = 0, south = 0;
+  for (const StreetEdge& s : parked.streets)
+    for (std::size_t i = 0; i + 1 < s.line.size(); ++i)
+      ((s.line[i].y + s.line[i + 1].y) / 2 > 1500 ? north : south) += distance(s.line[i], s.line[i + 1]);
+  EXPECT_LT(north, 0.75 * south);
+  int parkBlocks = 0;
+  for (const Block& b : parked.blocks) parkBlocks += b.landUse == "park";
+  EXPECT_GT(parkBlocks, 0);
+}
