@@ -9,6 +9,7 @@ PACKAGES=(
   nlohmann-json3-dev libgtest-dev googletest sqlite3 python3 python3-numpy jq
   qgis python3-qgis qgis-providers grass-core xvfb xauth zip clang-format
   python3-osmnx
+  python3-distributed
 )
 
 missing=()

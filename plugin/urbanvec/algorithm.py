@@ -5,6 +5,7 @@ import os
 
 from qgis.core import (
     QgsProcessing,
+    QgsProcessingParameterNumber,
     QgsProcessingAlgorithm,
     QgsProcessingContext,
     QgsProcessingException,
@@ -23,6 +24,21 @@ from . import styles
 GRID_FOLDER_FILES = ['landuse.tif', 'density.tif', 'parcels.tif', 'parcels.csv', 'truth.gpkg']
 
 _RASTER_EXTENSIONS = ('.tif', '.tiff', '.vrt', '.img')
+
+#: Tiled mode of vectorize (issue 22, docs/scale.md): with TILED_WORKERS > 0 the algorithm runs
+#: `urbanvec-tiles run --local N -tile T -halo H` (installed beside the program) instead of one run.
+TILED_WORKERS, TILE_CELLS, HALO_CELLS = 'TILED_WORKERS', 'TILE_CELLS', 'HALO_CELLS'
+
+
+def tiles_program(program):
+    """urbanvec-tiles beside the program (installed), or in the source tree's tools/ (build/bin)."""
+    folder = os.path.dirname(os.path.abspath(program))
+    for candidate in (os.path.join(folder, 'urbanvec-tiles'),
+                      os.path.join(folder, '..', '..', 'tools', 'urbanvec-tiles')):
+        if os.path.isfile(candidate):
+            return os.path.normpath(candidate)
+    raise QgsProcessingException('tiled mode needs urbanvec-tiles beside {} (cmake --install puts it there)'.format(
+        program))
 _VECTOR_EXTENSIONS = ('.gpkg', '.shp', '.geojson', '.fgb', '.sqlite')
 
 
@@ -173,6 +189,21 @@ class UrbanvecAlgorithm(QgsProcessingAlgorithm):
             self.addParameter(argument.definition())
         for output in self.layer_outputs:
             self.addOutput(output.output_definition())
+        if self.name() == 'vectorize':
+            for name, text, default, minimum, advanced in (
+                    (TILED_WORKERS, 'Tiled mode: local Dask workers (0 = one run on the whole grid)', 0, 0, False),
+                    (TILE_CELLS, 'Tiled mode: tile size', 1024, 1, True),
+                    (HALO_CELLS, 'Tiled mode: halo around each tile', 256, 0, True)):
+                p = QgsProcessingParameterNumber(name, text, QgsProcessingParameterNumber.Integer, default, True,
+                                                 minimum)
+                if advanced:
+                    p.setFlags(p.flags() | p.FlagAdvanced)
+                self.addParameter(p)
+
+    def _tiled(self, parameters, context):
+        if self.name() != 'vectorize' or TILED_WORKERS not in parameters:
+            return 0
+        return self.parameterAsInt(parameters, TILED_WORKERS, context)
 
     def _overwrite_argument(self):
         return next((a for a in self.arguments if a.flag == '-overwrite'), None)
@@ -227,6 +258,12 @@ class UrbanvecAlgorithm(QgsProcessingAlgorithm):
     def processAlgorithm(self, parameters, context, feedback):
         program = self._program_locator()
         arguments, destinations = self._prepare(parameters, context, feedback)
+        workers = self._tiled(parameters, context)
+        if workers > 0:
+            # urbanvec-tiles run takes the vectorize options and positionals as they are.
+            program, arguments = tiles_program(program), [
+                'run', '--local', str(workers), '-tile', str(self.parameterAsInt(parameters, TILE_CELLS, context)),
+                '-halo', str(self.parameterAsInt(parameters, HALO_CELLS, context))] + arguments[1:]
         ProgramRun(program, arguments, feedback, temporary_outputs=list(destinations.values())).run()
 
         results = dict(destinations)

@@ -59,6 +59,13 @@ app::CommandSpec spec() {
              "Table value,class_name mapping the land-use raster's values to the nine classes (nodata = "
              "unused), for rasters from other simulations or land-cover products.")
           .withRole(Role::InputFile));
+  o.push_back(option("-srcwin", ValueType::Integer, "<xoff> <yoff> <xsize> <ysize>",
+                     "Vectorize only this window of the rasters, in cells (as gdal_translate -srcwin): only "
+                     "the window is read, and the output is georeferenced at its place. Random draws are "
+                     "keyed by whole-raster cells, so a block inside the window gets the parcels it gets in "
+                     "a run on the whole grid (urbanvec-tiles, docs/scale.md).")
+                  .values(4)
+                  .isAdvanced());
   o.push_back(app::seedOption());
   o.push_back(option("-tries", ValueType::Integer, "<n>",
                      "Generate-and-test iterations per block; the lowest-cost parcelling is kept (E5).")
@@ -327,6 +334,17 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   if (args.given("-parcels")) paths.parcels = args.str("-parcels");
   if (args.given("-parcel-table")) paths.parcelTable = args.str("-parcel-table");
   if (args.given("-classes")) paths.classes = args.str("-classes");
+  if (args.given("-srcwin")) {
+    const std::vector<std::string> w = args.values("-srcwin");
+    int v[4];
+    for (int k = 0; k < 4; ++k) {
+      const long long x = std::stoll(w[static_cast<size_t>(k)]);
+      if (x < -2147483647LL || x > 2147483647LL)
+        throw invalidOption("-srcwin value " + w[static_cast<size_t>(k)] + " is out of range");
+      v[k] = static_cast<int>(x);
+    }
+    paths.window = io::RasterWindow{v[0], v[1], v[2], v[3]};
+  }
   std::vector<std::string> warnings;
   const vectorize::VectorizeInput input = app::loadGridInput(paths, &warnings);
   for (const std::string& w : warnings) ctx.warn(w);

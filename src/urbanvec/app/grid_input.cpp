@@ -206,8 +206,17 @@ vectorize::VectorizeInput loadGridInput(const GridInputPaths& paths, std::vector
   vectorize::VectorizeInput in;
   RasterInfo info;
   const std::string luRole = "land-use raster";
-  const Grid<double> raw = readRasterBand<double>(paths.landUse, luRole, &info);
+  const RasterWindow* window = paths.window ? &*paths.window : nullptr;
+  // With a window, the rasters are compared as wholes (before reading) and only the window is read.
+  const RasterInfo fullInfo = window ? inspectRaster(paths.landUse, luRole) : RasterInfo{};
+  auto checkSameGrid = [&](const std::string& path, const std::string& role) {
+    if (window) requireSameGridAs(fullInfo, luRole, paths.landUse, inspectRaster(path, role), role, path);
+  };
+  const Grid<double> raw = readRasterBand<double>(paths.landUse, luRole, &info, window);
+  const int colOffset = window ? window->xoff : 0, rowOffset = window ? window->yoff : 0;
   in.spec = info.spec;
+  in.originCol = colOffset;
+  in.originRow = rowOffset;
   requireMetricGrid(info.spec, luRole, paths.landUse);
   if (info.spec.crsWkt.empty() && warnings)
     warnings->push_back("land-use raster '" + paths.landUse + "' has no CRS: the output layers have none");
@@ -220,7 +229,8 @@ vectorize::VectorizeInput loadGridInput(const GridInputPaths& paths, std::vector
     if (info.nodata && (v == *info.nodata || (std::isnan(v) && std::isnan(*info.nodata))))
       continue;  // unused
     auto where = [&]() {
-      return " at column " + std::to_string(i % raw.width) + ", row " + std::to_string(i / raw.width);
+      return " at column " + std::to_string(i % raw.width + colOffset) + ", row " +
+             std::to_string(i / raw.width + rowOffset);
     };
     if (!classes.empty()) {
       auto it = classes.find(v);
@@ -241,7 +251,8 @@ vectorize::VectorizeInput loadGridInput(const GridInputPaths& paths, std::vector
 
   if (!paths.density.empty()) {
     RasterInfo di;
-    in.density = readRasterBand<float>(paths.density, "density raster", &di);
+    checkSameGrid(paths.density, "density raster");
+    in.density = readRasterBand<float>(paths.density, "density raster", &di, window);
     requireSameGridAs(info, luRole, paths.landUse, di, "density raster", paths.density);
     // Nodata cells hold no one; any other value must be a population: finite and not negative.
     const std::optional<float> nodata =
@@ -254,8 +265,8 @@ vectorize::VectorizeInput loadGridInput(const GridInputPaths& paths, std::vector
       }
       if (!std::isfinite(d) || d < 0)
         throw invalidInput("density raster '" + paths.density + "' holds value " + numberText(d) +
-                           " at column " + std::to_string(i % in.density.width) + ", row " +
-                           std::to_string(i / in.density.width) +
+                           " at column " + std::to_string(i % in.density.width + colOffset) + ", row " +
+                           std::to_string(i / in.density.width + rowOffset) +
                            ", which is not a population per cell (a finite number >= 0; only nodata "
                            "cells count as 0)");
     }
@@ -266,14 +277,15 @@ vectorize::VectorizeInput loadGridInput(const GridInputPaths& paths, std::vector
                        "the parcels' cells");
   if (!paths.parcels.empty()) {
     RasterInfo pi;
-    const Grid<double> ids = readRasterBand<double>(paths.parcels, "parcels raster", &pi);
+    checkSameGrid(paths.parcels, "parcels raster");
+    const Grid<double> ids = readRasterBand<double>(paths.parcels, "parcels raster", &pi, window);
     requireSameGridAs(info, luRole, paths.landUse, pi, "parcels raster", paths.parcels);
     in.parcelIds = Grid<std::int32_t>(ids.width, ids.height, 0);
     for (size_t i = 0; i < ids.cells.size(); ++i) {
       const double v = ids.cells[i];
       if (pi.nodata && v == *pi.nodata) continue;
-      const std::string where =
-          " at column " + std::to_string(i % ids.width) + ", row " + std::to_string(i / ids.width);
+      const std::string where = " at column " + std::to_string(i % ids.width + colOffset) + ", row " +
+                                std::to_string(i / ids.width + rowOffset);
       if (std::isnan(v) || v != std::floor(v) || v > 2147483647.0)
         throw invalidInput("parcels raster '" + paths.parcels + "' holds value " + numberText(v) + where +
                            ", which is not an integer parcel id");
@@ -329,6 +341,7 @@ vectorize::VectorizeInput loadGridInput(const GridInputPaths& paths, std::vector
       const std::optional<LandUse> use = parseLandUse(cols[cUse]);
       if (!use) throw invalidInput(at + ": land_use '" + cols[cUse] + "' is not a class name");
       const auto pid = static_cast<std::int32_t>(id);
+      if (window && !inRaster.count(pid)) continue;  // a parcel of another window
       if (!inRaster.count(pid))
         throw invalidInput(at + " names parcel id " + std::to_string(pid) +
                            ", which is not in the parcels raster '" + paths.parcels + "'");

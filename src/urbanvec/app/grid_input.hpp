@@ -5,9 +5,11 @@
 // below the modules (docs/architecture.md).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "urbanvec/io/raster_io.hpp"
 #include "urbanvec/vectorize/vectorize_input.hpp"
 
 namespace urbanvec::app {
@@ -18,6 +20,9 @@ struct GridInputPaths {
   std::string parcels;      ///< optional
   std::string parcelTable;  ///< optional; needs `parcels`
   std::string classes;      ///< optional `value,class_name` CSV mapping raster values to classes
+  /// Read only this window of every raster (`-srcwin`, issue 22 tiles); the rasters must still be one
+  /// grid as a whole. Parcel table rows of ids outside the window are skipped.
+  std::optional<io::RasterWindow> window;
 };
 
 /// Reads and checks everything; throws urbanvec::Error naming the file and what is wrong. Non-fatal

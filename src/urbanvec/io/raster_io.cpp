@@ -83,16 +83,44 @@ RasterInfo inspectRaster(const std::string& path, const std::string& role) {
   return describe(*ds);
 }
 
+GridSpec windowSpec(const GridSpec& full, const RasterWindow& w, const std::string& role,
+                    const std::string& path) {
+  const std::string text = std::to_string(w.xoff) + " " + std::to_string(w.yoff) + " " +
+                           std::to_string(w.xsize) + " " + std::to_string(w.ysize);
+  if (w.xsize <= 0 || w.ysize <= 0)
+    throw invalidOption("-srcwin " + text + ": the window size must be at least 1 x 1 cells");
+  if (w.xoff < 0 || w.yoff < 0 || static_cast<long long>(w.xoff) + w.xsize > full.width ||
+      static_cast<long long>(w.yoff) + w.ysize > full.height)
+    throw invalidOption("-srcwin " + text + " is not inside " + role + " '" + path + "' (" +
+                        std::to_string(full.width) + " x " + std::to_string(full.height) +
+                        " cells; the window must lie within columns 0.." + std::to_string(full.width - 1) +
+                        " and rows 0.." + std::to_string(full.height - 1) + ")");
+  GridSpec spec = full;
+  spec.width = w.xsize;
+  spec.height = w.ysize;
+  auto& c = spec.transform.c;
+  const auto& f = full.transform.c;
+  c[0] = f[0] + w.xoff * f[1] + w.yoff * f[2];
+  c[3] = f[3] + w.xoff * f[4] + w.yoff * f[5];
+  return spec;
+}
+
 template <class T>
-Grid<T> readRasterBand(const std::string& path, const std::string& role, RasterInfo* infoOut) {
+Grid<T> readRasterBand(const std::string& path, const std::string& role, RasterInfo* infoOut,
+                       const RasterWindow* window) {
   DatasetPtr ds = openRaster(path, role);
   RasterInfo info = describe(*ds);
   if (info.spec.width <= 0 || info.spec.height <= 0)
     throw invalidInput(role + " '" + path + "' has no cells");
+  RasterWindow w{0, 0, info.spec.width, info.spec.height};
+  if (window) {
+    info.spec = windowSpec(info.spec, *window, role, path);
+    w = *window;
+  }
   Grid<T> grid(info.spec.width, info.spec.height);
   CPLErrorReset();
-  if (ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, grid.width, grid.height, grid.cells.data(), grid.width,
-                                     grid.height, gdalType<T>(), 0, 0) != CE_None)
+  if (ds->GetRasterBand(1)->RasterIO(GF_Read, w.xoff, w.yoff, grid.width, grid.height, grid.cells.data(),
+                                     grid.width, grid.height, gdalType<T>(), 0, 0) != CE_None)
     throw invalidInput(role + " '" + path + "' could not be read (" + lastGdalMessage() + ")");
   if (infoOut) *infoOut = info;
   return grid;
@@ -158,10 +186,13 @@ void requireSameGrid(const GridSpec& a, const std::string& aPath, const GridSpec
   }
 }
 
-template Grid<std::uint8_t> readRasterBand(const std::string&, const std::string&, RasterInfo*);
-template Grid<std::int32_t> readRasterBand(const std::string&, const std::string&, RasterInfo*);
-template Grid<float> readRasterBand(const std::string&, const std::string&, RasterInfo*);
-template Grid<double> readRasterBand(const std::string&, const std::string&, RasterInfo*);
+template Grid<std::uint8_t> readRasterBand(const std::string&, const std::string&, RasterInfo*,
+                                           const RasterWindow*);
+template Grid<std::int32_t> readRasterBand(const std::string&, const std::string&, RasterInfo*,
+                                           const RasterWindow*);
+template Grid<float> readRasterBand(const std::string&, const std::string&, RasterInfo*, const RasterWindow*);
+template Grid<double> readRasterBand(const std::string&, const std::string&, RasterInfo*,
+                                     const RasterWindow*);
 template void writeRasterBand(const std::string&, const GridSpec&, const Grid<std::uint8_t>&,
                               std::optional<double>, const RasterWriteOptions&);
 template void writeRasterBand(const std::string&, const GridSpec&, const Grid<std::int32_t>&,

@@ -21,9 +21,24 @@ struct RasterInfo {
 /// not a raster GDAL can read. `role` names the input in messages ("land-use raster").
 RasterInfo inspectRaster(const std::string& path, const std::string& role);
 
-/// Reads band 1 converted to T, with its frame and nodata.
+/// A block of cells of a raster, as gdal_translate's -srcwin: the first column and row and the size.
+struct RasterWindow {
+  int xoff = 0;
+  int yoff = 0;
+  int xsize = 0;
+  int ysize = 0;
+};
+
+/// Reads band 1 converted to T, with its frame and nodata. With a window, only those cells are read
+/// and the frame is the window's (origin moved to its first cell, as gdal_translate -srcwin); a window
+/// not wholly inside the raster is an error (InvalidOption, naming -srcwin and the raster's size).
 template <class T>
-Grid<T> readRasterBand(const std::string& path, const std::string& role, RasterInfo* info = nullptr);
+Grid<T> readRasterBand(const std::string& path, const std::string& role, RasterInfo* info = nullptr,
+                       const RasterWindow* window = nullptr);
+
+/// The frame of `window` within `full` (checked as readRasterBand does; `path` names the raster).
+GridSpec windowSpec(const GridSpec& full, const RasterWindow& window, const std::string& role,
+                    const std::string& path);
 
 struct RasterWriteOptions {
   std::string format = "GTiff";

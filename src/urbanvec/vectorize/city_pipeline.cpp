@@ -264,6 +264,15 @@ CityResult vectorizeCity(const RoadNetwork& network, const Grid<std::uint8_t>& c
     block.obbAspect = info.obb.aspect;
     block.obbDiagonal = info.obb.diagonal;
     block.sim = summarizeSimulatedBlocks(info.simBlockIndices, blocks, simParcels, cells);
+    // Seed stream = the block's first simulated cell (row-major) in the whole raster, (row << 32) | col:
+    // the same in a tile's window as in a single run (issue 22), whatever the block numbering.
+    std::int32_t first = -1;
+    for (int k : info.simBlockIndices)
+      for (std::int32_t p : blocks[static_cast<size_t>(k)].patches)
+        if (first < 0 || p < first) first = p;
+    if (first >= 0 && cells.width > 0)
+      block.seedStream = (static_cast<std::uint64_t>(first / cells.width + options.originRow) << 32) |
+                         static_cast<std::uint64_t>(first % cells.width + options.originCol);
     result.parcelBlocks.push_back(std::move(block));
   }
   result.parcels =

@@ -29,6 +29,10 @@ struct CityOptions {
   /// land around it. false = such a block stays one parcel (E2 constraint 2 read literally; its
   /// report says "block has no road-facing boundary").
   bool islandFrontage = true;
+  /// Column and row of the grid's first cell in the whole raster (VectorizeInput::originCol/Row, set by
+  /// the pipeline, not a user option): each block's seed stream is its first simulated cell there.
+  std::int64_t originCol = 0;
+  std::int64_t originRow = 0;
 };
 
 struct CityResult {

@@ -285,6 +285,8 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
     const auto t0 = std::chrono::steady_clock::now();
     resetPeakMemory();
     CityOptions city = options.city;
+    city.originCol = input.originCol;
+    city.originRow = input.originRow;
     city.blocks.external.undeveloped = options.perimeters;
     result.city = vectorizeCity(result.network, result.cells, result.blocks, result.parcels, input.spec, city,
                                 subProgress(progress, 0.3, 1.0));

@@ -30,6 +30,11 @@ struct VectorizeInput {
   Grid<std::int32_t> parcelIds;
   /// The per-parcel list; empty when not given (then derived from parcelIds).
   std::vector<ParcelRecord> parcelTable;
+  /// Column and row of this grid's first cell in the whole raster when it is a window of it (`-srcwin`,
+  /// tiles of issue 22), else 0. Random streams are keyed by whole-raster cells, so a block draws the
+  /// same numbers in every window that holds it.
+  std::int64_t originCol = 0;
+  std::int64_t originRow = 0;
 };
 
 /// Working patch code beyond the nine classes: a patch that was road and was removed by A3 or A4.3

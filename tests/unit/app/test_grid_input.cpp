@@ -192,3 +192,62 @@ TEST(GridInput, ReadsClassTablesSeparatedBySemicolons) {
   EXPECT_EQ(table[1].second, LandUse::Water);
   fs::remove_all(d);
 }
+
+// Issue 22: `-srcwin` reads only a window of every raster, georeferenced at its place; rows of the
+// parcel table outside it are skipped; positions in messages are whole-raster cells.
+TEST(GridInput, ReadsOnlyTheWindowGeoreferencedAtItsPlace) {
+  const fs::path d = freshDir("window");
+  const GridSpec spec = metricFrame();
+  Grid<std::uint8_t> lu(4, 3, 4);
+  Grid<float> density(4, 3, 0.0f);
+  Grid<std::int32_t> ids(4, 3, 0);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) {
+      lu.at(c, r) = static_cast<std::uint8_t>((c + r) % 8 + 1);
+      density.at(c, r) = static_cast<float>(10 * r + c);
+      ids.at(c, r) = 1 + c;  // one parcel per column
+    }
+  const std::string luPath = (d / "landuse.tif").string(), dPath = (d / "density.tif").string(),
+                    pPath = (d / "parcels.tif").string(), table = (d / "parcels.csv").string();
+  io::writeRasterBand(luPath, spec, lu, std::nullopt);
+  io::writeRasterBand(dPath, spec, density, std::nullopt);
+  io::writeRasterBand(pPath, spec, ids, std::nullopt);
+  std::ofstream(table) << "parcel_id,land_use,population,cells\n1,residential,1,3\n2,park,2,3\n3,park,3,3\n"
+                          "4,commercial,4,3\n";
+  app::GridInputPaths paths{luPath, dPath, pPath, table, ""};
+  paths.window = io::RasterWindow{1, 1, 2, 2};
+  const vectorize::VectorizeInput in = app::loadGridInput(paths);
+  EXPECT_EQ(in.spec.width, 2);
+  EXPECT_EQ(in.spec.height, 2);
+  EXPECT_DOUBLE_EQ(in.spec.transform.c[0], 371576 + 10);
+  EXPECT_DOUBLE_EQ(in.spec.transform.c[3], 4845656 - 10);
+  EXPECT_EQ(in.originCol, 1);
+  EXPECT_EQ(in.originRow, 1);
+  for (int r = 0; r < 2; ++r)
+    for (int c = 0; c < 2; ++c) {
+      EXPECT_EQ(in.landUse.at(c, r), lu.at(c + 1, r + 1));
+      EXPECT_EQ(in.density.at(c, r), density.at(c + 1, r + 1));
+      EXPECT_EQ(in.parcelIds.at(c, r), ids.at(c + 1, r + 1));
+    }
+  // Parcels 1 and 4 lie outside the window: their rows are skipped, not refused.
+  ASSERT_EQ(in.parcelTable.size(), 2u);
+  EXPECT_EQ(in.parcelTable[0].id, 2);
+  EXPECT_EQ(in.parcelTable[1].id, 3);
+  // A window reaching past the grid is refused, naming the raster's size.
+  paths.window = io::RasterWindow{3, 2, 2, 2};
+  EXPECT_EQ(message([&] { app::loadGridInput(paths); }),
+            "-srcwin 3 2 2 2 is not inside land-use raster '" + luPath +
+                "' (4 x 3 cells; the window must lie within columns 0..3 and rows 0..2)");
+  paths.window = io::RasterWindow{0, 0, 0, 2};
+  EXPECT_EQ(message([&] { app::loadGridInput(paths); }),
+            "-srcwin 0 0 0 2: the window size must be at least 1 x 1 cells");
+  // A bad value inside the window is reported at its whole-raster cell.
+  density.at(2, 2) = -1.0f;
+  io::writeRasterBand(dPath, spec, density, std::nullopt);
+  paths.window = io::RasterWindow{1, 1, 2, 2};
+  EXPECT_NE(message([&] { app::loadGridInput(paths); }).find("at column 2, row 2"), std::string::npos);
+  // The rasters must still be one grid as wholes: a density raster of another size is refused.
+  io::writeRasterBand(dPath, spec, Grid<float>(3, 3, 0.0f), std::nullopt);
+  EXPECT_NE(message([&] { app::loadGridInput(paths); }).find("differ in size"), std::string::npos);
+  fs::remove_all(d);
+}

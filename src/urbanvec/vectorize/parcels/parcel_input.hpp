@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,7 +54,10 @@ inline std::array<double, kLandUseClassCount> simulatedUseAreas(const SimBlockSu
 
 /// One vector block as D1-D5 leave it (spec §2.2 VecBlock), in cell units.
 struct ParcelBlock {
-  std::int64_t blockId = 0;  ///< also the seed stream: deriveSeed(runSeed, blockId)
+  std::int64_t blockId = 0;  ///< also the seed stream when seedStream is unset: deriveSeed(runSeed, blockId)
+  /// The block's seed stream, deriveSeed(runSeed, seedStream), when set: vectorizeCity sets it from the
+  /// block's first simulated cell in the whole raster, so a block draws alike in every window (tiles).
+  std::optional<std::uint64_t> seedStream;
   Polygon polygon;           ///< valid polygon, may have holes
   bool external = false;     ///< external (city-edge) block: never gets a spine (spec D6)
   bool hasCulDeSac = false;  ///< the boundary includes edges of a cul-de-sac octagon (spec D6)

@@ -68,7 +68,8 @@ BlockParcels parcelBlock(const ParcelBlock& block, const ParcelsOptions& options
   const int simCount = static_cast<int>(sim.parcels.size());
   report.simParcels = simCount;
   for (const SimParcel& p : sim.parcels) report.simPopulation += p.population;
-  Rng rng(deriveSeed(options.seed, static_cast<std::uint64_t>(block.blockId)));
+  Rng rng(deriveSeed(options.seed,
+                     block.seedStream ? *block.seedStream : static_cast<std::uint64_t>(block.blockId)));
   const double blockArea = area(block.polygon);
   const double diagonal = block.obbDiagonal > 0.0 ? block.obbDiagonal : orientedBox(block.polygon).diagonal();
 

@@ -35,7 +35,7 @@ struct ParcelsOptions {
   /// report's relaxed_rules says how many rounds the kept result needed. 0 = the documents' rules.
   int relaxationRounds = 2;
   int relaxedTries = 10;
-  /// Run seed (`-seed`); block b uses deriveSeed(seed, b.blockId).
+  /// Run seed (`-seed`); block b uses deriveSeed(seed, b.seedStream or else b.blockId).
   std::uint64_t seed = 0;
   /// Worker threads; 0 = all cores. Does not change the output.
   int threads = 0;
