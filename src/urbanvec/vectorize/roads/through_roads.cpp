@@ -21,7 +21,10 @@ namespace {
 
 bool consistentWithLine(const std::vector<Vec2>& placements, const Vec2& centre, const Vec2& direction,
                         double slack) {
-  const double band = digitalLineBand(direction) + slack;
+  // A digital line's cells reach the band's edge exactly (every other cell of a 45-degree staircase), so
+  // the edge is inside up to the rounding of the cross product.
+  constexpr double kRounding = 1e-9;
+  const double band = digitalLineBand(direction) + slack + kRounding;
   for (const Vec2& p : placements)
     if (std::fabs(cross(direction, p - centre)) > band) return false;
   return true;
