@@ -73,19 +73,31 @@ app::CommandSpec spec() {
                      "CRS of the drawing when it has none (a DXF never has one).")
                   .withRole(Role::Crs));
   o.push_back(option("-collapse", ValueType::Real, "<metres>",
-                     "Collapsing Threshold (the thesis used 1 m; 0.7 m measured on real cadastre).")
+                     "Collapsing Threshold: vertices and parallel segments closer than this are one (the "
+                     "thesis used 1 m).")
                   .byDefault(app::numberText(d.collapsingThreshold))
                   .withUnit("m"));
   o.push_back(option("-block-threshold", ValueType::Real, "<metres>",
                      "Block Threshold, slightly smaller than the narrowest street (the thesis used 3 m).")
                   .byDefault(app::numberText(d.blockThreshold))
                   .withUnit("m"));
-  o.push_back(
-      option("-thesis-thresholds", ValueType::Flag, "", "Use the thesis's thresholds (1 m and 3 m)."));
+  o.push_back(option("-thesis-thresholds", ValueType::Flag, "",
+                     "Use the thesis's thresholds (Collapsing 1 m, Block 3 m)."));
   o.push_back(
       option("-thesis-revert", ValueType::Flag, "",
              "On a failed collapse, revert it as the thesis does (split off the farthest vertex) instead of "
              "keeping the new vertex apart.")
+          .isAdvanced());
+  o.push_back(option("-collapse-all", ValueType::Flag, "",
+                     "Collapse every vertex as the thesis does, also two where lines already meet exactly "
+                     "(default: only free ends collapse).")
+                  .isAdvanced());
+  o.push_back(
+      option("-straighten", ValueType::Real, "<share>",
+             "Drop degree-2 vertices closer than this share of -collapse to the line of their neighbours "
+             "(split and jittered straight lines); 0 keeps every vertex.")
+          .byDefault(app::numberText(d.straightenShare))
+          .atLeast(0)
           .isAdvanced());
   o.push_back(
       option("-min-area", ValueType::Real, "<m2>", "Circuits smaller than this are slivers and dropped.")
@@ -209,6 +221,8 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
                         " is larger than -block-threshold " + app::numberText(options.blockThreshold) +
                         "; the Collapsing Threshold must not exceed the Block Threshold");
   options.thesisRevert = args.flag("-thesis-revert");
+  options.freeEndsOnly = !args.flag("-collapse-all");
+  options.straightenShare = args.real("-straighten");
   options.minFaceArea = args.real("-min-area");
   options.labelSearchDistance = args.real("-label-distance");
   options.groundFloorHeight = args.real("-ground-floor");
@@ -428,6 +442,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   row("undershoots_to_vertex", n(rep.undershootsToVertex), "dangling ends joined to the nearest vertex");
   row("overshoots_cut", n(rep.overshootsCut), "ends running past a crossing");
   row("fringe_edges_removed", n(rep.fringeEdgesRemoved), "removed fringe paths (edges)");
+  row("vertices_straightened", n(rep.verticesStraightened), "degree-2 vertices dropped on straight lines");
   row("slivers_dropped", n(rep.slivers), "circuits under -min-area");
   row("faces_outside_blocks", n(rep.facesOutsideBlocks), "building circuits outside every block");
   row("buildings_outside_blocks", n(rep.buildingsOutsideBlocks),

@@ -21,6 +21,7 @@ void addGraphStats(CadastreReport& r, const GraphStats& g) {
   r.undershootsToVertex += g.undershootsToVertex;
   r.overshootsCut += g.overshootsCut;
   r.fringeEdgesRemoved += g.fringeEdgesRemoved;
+  r.verticesStraightened += g.verticesStraightened;
 }
 
 std::string number(double v) {
@@ -52,8 +53,8 @@ CadastreResult structureCadastre(const std::vector<CadLine>& lines, const std::v
 
   // §A.4 vertex cleaning, §A.5 segment cleaning.
   CollapseStats cs;
-  Linework lw =
-      collapseVertices(lines, o.collapsingThreshold, cs, subProgress(progress, 0.0, 0.15), o.thesisRevert);
+  Linework lw = collapseVertices(lines, o.collapsingThreshold, cs, subProgress(progress, 0.0, 0.15),
+                                 o.thesisRevert, o.freeEndsOnly);
   rep.inputVertices = cs.inputVertices;
   rep.outputVertices = cs.outputVertices;
   rep.collapsedShare = cs.collapsedShare();
@@ -64,10 +65,11 @@ CadastreResult structureCadastre(const std::vector<CadLine>& lines, const std::v
   rep.duplicateSegments = ss.duplicateSegments;
   rep.verticesOnSegments = ss.verticesOnSegments;
 
+  const double tolerance = o.straightenShare * o.collapsingThreshold;
   // §A.6 blocks: pre-block graph of the block layer, its circuits, sub-blocks and courtyards.
   GraphStats gs;
   const PlanarGraph blockGraph =
-      structuredGraph(lw, kBlockLayer, o.blockThreshold, gs, subProgress(progress, 0.25, 0.4));
+      structuredGraph(lw, kBlockLayer, o.blockThreshold, gs, subProgress(progress, 0.25, 0.4), tolerance);
   addGraphStats(rep, gs);
   int preBlockCount = 0;
   const std::vector<int> preBlockOf = preBlocks(blockGraph, o.blockThreshold, &preBlockCount);
@@ -114,6 +116,17 @@ CadastreResult structureCadastre(const std::vector<CadLine>& lines, const std::v
           if (d > o.collapsingThreshold) enclosedBlock[static_cast<size_t>(k)] = 1;
         });
       }
+    }
+    // A number-of-floors label inside the ring also makes it a block (a building fills it).
+    for (int k : candidates) {
+      const Ring& ring = bc.outlines[static_cast<size_t>(k)];
+      double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+      for (const Vec2& p : ring)
+        x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
+      for (const CadLabel& l : labels)
+        if (!enclosedBlock[static_cast<size_t>(k)] && l.p.x >= x0 && l.p.x <= x1 && l.p.y >= y0 &&
+            l.p.y <= y1 && pointInRing(l.p, ring) && parseFloorLabel(l.text).above > 0)
+          enclosedBlock[static_cast<size_t>(k)] = 1;
     }
     for (char e : enclosedBlock) rep.enclosedBlocks += e ? 1 : 0;
   }
@@ -173,8 +186,8 @@ CadastreResult structureCadastre(const std::vector<CadLine>& lines, const std::v
   // Parcels (beyond the thesis): circuits of block + lot linework inside the blocks.
   {
     GraphStats pg;
-    const PlanarGraph g =
-        structuredGraph(lw, kBlockLayer | kLotLayer, o.blockThreshold, pg, subProgress(progress, 0.5, 0.65));
+    const PlanarGraph g = structuredGraph(lw, kBlockLayer | kLotLayer, o.blockThreshold, pg,
+                                          subProgress(progress, 0.5, 0.65), tolerance);
     const Circuits pc = findCircuits(g, o.minFaceArea, o.sliverWidthShare * o.collapsingThreshold);
     std::size_t outside = 0;
     for (Localised& l : localise(pc.faces, locator, o.minFaceArea, outside))
@@ -185,7 +198,7 @@ CadastreResult structureCadastre(const std::vector<CadLine>& lines, const std::v
   // §A.7 buildings: lot and building layers together with the block layer, circuits again.
   GraphStats bg;
   const PlanarGraph g = structuredGraph(lw, kBlockLayer | kLotLayer | kBuildingLayer, o.blockThreshold, bg,
-                                        subProgress(progress, 0.65, 0.85));
+                                        subProgress(progress, 0.65, 0.85), tolerance);
   addGraphStats(rep, bg);
   const Circuits ec = findCircuits(g, o.minFaceArea, o.sliverWidthShare * o.collapsingThreshold);
   rep.slivers += ec.slivers;

@@ -49,8 +49,60 @@ double segmentDistance(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& 
 
 }  // namespace
 
+PlanarGraph straightenChains(const PlanarGraph& g, double tolerance, GraphStats& stats) {
+  std::vector<LineString> lines;
+  for (const std::vector<int>& chain : g.chains()) {
+    const std::vector<int> nodes = g.chainNodes(chain);
+    std::vector<Vec2> pts;
+    for (int n : nodes) pts.push_back(g.node(n).p);
+    // Douglas-Peucker over the chain's nodes; a closed chain keeps its start and farthest node.
+    std::vector<char> keep(pts.size(), 0);
+    keep.front() = keep.back() = 1;
+    const bool closed = nodes.front() == nodes.back();
+    std::vector<std::pair<size_t, size_t>> stack;
+    if (closed) {
+      size_t far = 0;
+      for (size_t i = 1; i + 1 < pts.size(); ++i)
+        if (distance(pts[i], pts[0]) > distance(pts[far], pts[0])) far = i;
+      if (far == 0) {
+        lines.push_back(pts);
+        continue;
+      }
+      keep[far] = 1;
+      stack = {{0, far}, {far, pts.size() - 1}};
+    } else {
+      stack = {{0, pts.size() - 1}};
+    }
+    while (!stack.empty()) {
+      const auto [a, b] = stack.back();
+      stack.pop_back();
+      double worst = -1.0;
+      size_t at = a;
+      for (size_t i = a + 1; i < b; ++i) {
+        const double d = distanceToSegment(pts[i], pts[a], pts[b]);
+        if (d > worst) worst = d, at = i;
+      }
+      if (worst > tolerance) {
+        keep[at] = 1;
+        stack.push_back({a, at});
+        stack.push_back({at, b});
+      }
+    }
+    LineString kept;
+    for (size_t i = 0; i < pts.size(); ++i) {
+      if (keep[i])
+        kept.push_back(pts[i]);
+      else
+        ++stats.verticesStraightened;
+    }
+    lines.push_back(std::move(kept));
+  }
+  // Straightened chains may now cross their neighbours: node them again.
+  return PlanarGraph::fromLines(lines, 0.0);
+}
+
 PlanarGraph structuredGraph(const Linework& lw, std::uint8_t layerMask, double gap, GraphStats& stats,
-                            const Progress& progress) {
+                            const Progress& progress, double simplifyTolerance) {
   std::vector<LineString> lines;
   for (const Segment& s : lw.segments)
     if (s.layers & layerMask)
@@ -233,7 +285,7 @@ PlanarGraph structuredGraph(const Linework& lw, std::uint8_t layerMask, double g
   }
   out.sortRotations();
   reportProgress(progress, 1.0, "removing fringe paths");
-  return out;
+  return simplifyTolerance > 0.0 ? straightenChains(out, simplifyTolerance, stats) : out;
 }
 
 std::vector<int> preBlocks(const PlanarGraph& g, double threshold, int* count) {

@@ -61,6 +61,7 @@ void cleanSegments(Linework& lw, double threshold, SegmentCleaningStats& stats, 
   std::vector<int> seen;
   for (size_t v = 0; v < V.size(); ++v) {
     ticker.tick();
+    if (!lw.sound.empty() && lw.sound[v]) continue;  // lines met here exactly: not a stray end
     const Vec2 p = V[v];
     seen.clear();
     grid.query(p.x - threshold, p.y - threshold, p.x + threshold, p.y + threshold,

@@ -45,7 +45,7 @@ struct Rep {
 }  // namespace
 
 Linework collapseVertices(const std::vector<CadLine>& lines, double threshold, CollapseStats& stats,
-                          const Progress& progress, bool revert) {
+                          const Progress& progress, bool revert, bool freeEndsOnly) {
   stats = {};
   // 1. Identical coordinates are one vertex (§A.4 case 1); ids in order of first occurrence.
   std::unordered_map<std::pair<std::uint64_t, std::uint64_t>, int, PairHash> idOf;
@@ -68,6 +68,11 @@ Linework collapseVertices(const std::vector<CadLine>& lines, double threshold, C
         adjacent[static_cast<size_t>(ids[i - 1])].push_back(ids[i]);
       }
 
+  // Vertices where lines already meet exactly (two or more segment ends) are sound; with
+  // `freeEndsOnly` two of them never collapse together, only a free end joins another vertex.
+  std::vector<char> joinedVertex(coords.size(), 0);
+  for (size_t i = 0; i < coords.size(); ++i) joinedVertex[i] = adjacent[i].size() >= 2;
+  std::vector<char> repJoined;  // per representative: all its members are joined vertices
   // 2. Collapse onto the nearest representative within the threshold (§A.4 cases 2 and 3).
   std::vector<int> repOf(coords.size(), -1);
   std::vector<Rep> reps;
@@ -91,6 +96,7 @@ Linework collapseVertices(const std::vector<CadLine>& lines, double threshold, C
       bool joined = false;
       for (int y : adjacent[x])
         if (repOf[static_cast<size_t>(y)] == r) joined = true;
+      if (freeEndsOnly && joinedVertex[x] && repJoined[static_cast<size_t>(r)]) joined = true;
       if (!joined) {
         chosen = r;
         break;
@@ -101,6 +107,7 @@ Linework collapseVertices(const std::vector<CadLine>& lines, double threshold, C
       rep.members = {id};
       rep.recompute(coords);
       repOf[static_cast<size_t>(id)] = static_cast<int>(reps.size());
+      repJoined.push_back(joinedVertex[static_cast<size_t>(id)]);
       grid.insert(rep.pos, static_cast<int>(reps.size()));
       reps.push_back(std::move(rep));
     };
@@ -126,6 +133,7 @@ Linework collapseVertices(const std::vector<CadLine>& lines, double threshold, C
     if (farthest < 0) {
       r.members.push_back(static_cast<int>(x));
       repOf[x] = chosen;
+      repJoined[static_cast<size_t>(chosen)] = repJoined[static_cast<size_t>(chosen)] && joinedVertex[x];
       r.recompute(coords);
       grid.insert(r.pos, chosen);
     } else if (!revert) {
@@ -149,6 +157,7 @@ Linework collapseVertices(const std::vector<CadLine>& lines, double threshold, C
   Linework out;
   out.vertices.reserve(reps.size());
   for (const Rep& r : reps) out.vertices.push_back(r.pos);
+  if (freeEndsOnly) out.sound.assign(repJoined.begin(), repJoined.end());
   stats.outputVertices = reps.size();
   for (size_t l = 0; l < lines.size(); ++l) {
     const auto& ids = lineIds[l];

@@ -29,8 +29,10 @@ struct CollapseStats {
 /// two vertices joined by a segment never collapse together (a short edge of a clean drawing is kept,
 /// not shrunk to a point). Returns the representatives and one segment per polyline step (steps that
 /// collapsed to a point are dropped and counted). With `revert` false the failed collapse only keeps
-/// the new vertex apart and leaves the representative whole (the default, see CadastreOptions).
+/// the new vertex apart and leaves the representative whole (the default, see CadastreOptions). With
+/// `freeEndsOnly`, two vertices where lines already meet exactly never collapse together: only a free
+/// end (one segment) joins another vertex, so a clean drawing keeps every vertex however close.
 Linework collapseVertices(const std::vector<CadLine>& lines, double threshold, CollapseStats& stats,
-                          const Progress& progress = {}, bool revert = true);
+                          const Progress& progress = {}, bool revert = true, bool freeEndsOnly = false);
 
 }  // namespace urbanvec::cadastre
