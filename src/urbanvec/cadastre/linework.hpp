@@ -66,7 +66,7 @@ struct CadastreOptions {
   double straightenShare = 0.0;
   /// Circuits whose mean width 2 area / perimeter is below this share of the Collapsing Threshold are
   /// slivers between nearly coincident lines, dropped.
-  double sliverWidthShare = 0.4;
+  double sliverWidthShare = 0.35;
   /// Faces smaller than this (m²) are slivers between nearly coincident lines and are dropped.
   double minFaceArea = 0.1;
   /// A label outside every building element goes to the nearest one within this distance (m).

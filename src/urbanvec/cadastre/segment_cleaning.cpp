@@ -27,9 +27,8 @@ std::size_t dropDuplicateSegments(std::vector<Segment>& segments) {
 void cleanSegments(Linework& lw, double threshold, SegmentCleaningStats& stats, const Progress& progress) {
   stats = {};
   stats.duplicateSegments += dropDuplicateSegments(lw.segments);
-  const auto& V = lw.vertices;
   // Neighbours of each vertex (sorted), to leave a vertex joined to a segment's end alone (a notch).
-  std::vector<std::vector<int>> adjacent(V.size());
+  std::vector<std::vector<int>> adjacent(lw.vertices.size());
   for (const Segment& s : lw.segments) {
     adjacent[static_cast<size_t>(s.a)].push_back(s.b);
     adjacent[static_cast<size_t>(s.b)].push_back(s.a);
@@ -42,7 +41,7 @@ void cleanSegments(Linework& lw, double threshold, SegmentCleaningStats& stats, 
   // Cells of about a typical segment (at least twice the threshold): each segment touches few cells.
   std::vector<double> lengths;
   for (const Segment& s : lw.segments)
-    lengths.push_back(distance(V[static_cast<size_t>(s.a)], V[static_cast<size_t>(s.b)]));
+    lengths.push_back(distance(lw.vertices[static_cast<size_t>(s.a)], lw.vertices[static_cast<size_t>(s.b)]));
   double cell = std::max(threshold, 1e-9) * 2.0;
   if (!lengths.empty()) {
     std::nth_element(lengths.begin(), lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2),
@@ -51,35 +50,46 @@ void cleanSegments(Linework& lw, double threshold, SegmentCleaningStats& stats, 
   }
   CellGrid grid(cell);
   for (size_t i = 0; i < lw.segments.size(); ++i) {
-    const Vec2 a = V[static_cast<size_t>(lw.segments[i].a)], b = V[static_cast<size_t>(lw.segments[i].b)];
+    const Vec2 a = lw.vertices[static_cast<size_t>(lw.segments[i].a)],
+               b = lw.vertices[static_cast<size_t>(lw.segments[i].b)];
     grid.insertBox(std::min(a.x, b.x), std::min(a.y, b.y), std::max(a.x, b.x), std::max(a.y, b.y),
                    static_cast<int>(i));
   }
   // Split points per segment: (parameter along it, vertex).
   std::vector<std::vector<std::pair<double, int>>> splits(lw.segments.size());
-  ProgressTicker ticker(progress, "cleaning segments", V.size());
+  ProgressTicker ticker(progress, "cleaning segments", lw.vertices.size());
   std::vector<int> seen;
-  for (size_t v = 0; v < V.size(); ++v) {
+  for (size_t v = 0; v < lw.vertices.size(); ++v) {
     ticker.tick();
     if (!lw.sound.empty() && lw.sound[v]) continue;  // lines met here exactly: not a stray end
-    const Vec2 p = V[v];
+    const Vec2 p = lw.vertices[v];
     seen.clear();
     grid.query(p.x - threshold, p.y - threshold, p.x + threshold, p.y + threshold,
                [&](int s) { seen.push_back(s); });
     std::sort(seen.begin(), seen.end());
     seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
+    // The nearest segment the vertex lies on (within the threshold, inside its span); the vertex
+    // moves onto it (the stored segment keeps its geometry, §A.5) and splits it there.
+    int best = -1;
+    double bestD = threshold, bestT = 0.0;
     for (int si : seen) {
       const Segment& s = lw.segments[static_cast<size_t>(si)];
       const int iv = static_cast<int>(v);
       if (s.a == iv || s.b == iv || joined(iv, s.a) || joined(iv, s.b)) continue;
-      const Vec2 a = V[static_cast<size_t>(s.a)], b = V[static_cast<size_t>(s.b)];
+      const Vec2 a = lw.vertices[static_cast<size_t>(s.a)], b = lw.vertices[static_cast<size_t>(s.b)];
       const Vec2 ab = b - a;
       const double len2 = dot(ab, ab);
       if (len2 <= 0) continue;
       const double t = dot(p - a, ab) / len2;
       if (t <= 0.0 || t >= 1.0) continue;
-      if (distance(p, a + ab * t) >= threshold) continue;
-      splits[static_cast<size_t>(si)].emplace_back(t, iv);
+      const double d = distance(p, a + ab * t);
+      if (d < bestD) bestD = d, best = si, bestT = t;
+    }
+    if (best >= 0) {
+      const Segment& s = lw.segments[static_cast<size_t>(best)];
+      const Vec2 a = lw.vertices[static_cast<size_t>(s.a)], b = lw.vertices[static_cast<size_t>(s.b)];
+      lw.vertices[v] = a + (b - a) * bestT;
+      splits[static_cast<size_t>(best)].emplace_back(bestT, static_cast<int>(v));
     }
   }
   ticker.finish();

@@ -14,12 +14,12 @@ struct SegmentCleaningStats {
 };
 
 /// Cleans the segments in place. A vertex closer than `threshold` to the inside of a segment it is not
-/// joined to (neither end is its neighbour) splits the segment there, so partial overlaps (§A.5 case 3)
-/// become identical pieces and an end stopping on the middle of a segment becomes a T-vertex; then
-/// identical segments (either direction) are kept once, with the union of their layers. The result is
-/// sorted, so it does not depend on the drawing's entity order. Vertices marked sound in the linework
-/// (lines met there exactly) split nothing. O(n log n) with a grid of `threshold`
-/// cells (the quad-tree improvement the thesis suggests, instead of its O(n²) pairs).
+/// joined to (neither end is its neighbour) moves onto the nearest such segment and splits it there, so
+/// partial overlaps (§A.5 case 3) become identical pieces and an end stopping on the middle of a segment
+/// becomes a T-vertex; then identical segments (either direction) are kept once, with the union of their
+/// layers. The result is sorted, so it does not depend on the drawing's entity order. Vertices marked sound
+/// in the linework (lines met there exactly) split nothing. O(n log n) with a grid of `threshold` cells (the
+/// quad-tree improvement the thesis suggests, instead of its O(n²) pairs).
 void cleanSegments(Linework& linework, double threshold, SegmentCleaningStats& stats,
                    const Progress& progress = {});
 
