@@ -3,6 +3,7 @@
 // stages pass on, a small spatial grid used by every proximity query, and the pipeline's options.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -102,6 +103,15 @@ class CellGrid {
   void insertBox(double x0, double y0, double x1, double y1, int id) {
     for (std::int64_t i = cx(x0); i <= cx(x1); ++i)
       for (std::int64_t j = cx(y0); j <= cx(y1); ++j) cells_[key(i, j)].push_back(id);
+  }
+  /// Calls f(ids) for every non-empty cell, in an order fixed by the cells' contents.
+  template <class F>
+  void forEachCell(F&& f) const {
+    std::vector<std::int64_t> keys;
+    keys.reserve(cells_.size());
+    for (const auto& kv : cells_) keys.push_back(kv.first);
+    std::sort(keys.begin(), keys.end());
+    for (std::int64_t k : keys) f(cells_.at(k));
   }
   /// Calls f(id) for the ids of every cell the box touches (an id may come more than once).
   template <class F>

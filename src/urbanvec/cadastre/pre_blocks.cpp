@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <limits>
 #include <numeric>
+#include <unordered_map>
 
 namespace urbanvec::cadastre {
 namespace {
@@ -45,6 +46,103 @@ double segmentDistance(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& 
   if (rayHit(a, (b - a) / std::max(length(b - a), 1e-300), c, d) <= length(b - a)) return 0.0;
   return std::min(std::min(distanceToSegment(a, c, d), distanceToSegment(b, c, d)),
                   std::min(distanceToSegment(c, a, b), distanceToSegment(d, a, b)));
+}
+
+/// A planar graph of straight segments, noded by a grid sweep (cells of about the median segment
+/// length; each pair of segments sharing a cell is tested once per cell, O(n) for drawings of short
+/// segments): segments are split where they cross or where an end touches another's inside; nodes by
+/// exact coordinate, repeated pieces once. Nodes are numbered by (x, y) and edges by their end nodes,
+/// so the result does not depend on the input order.
+PlanarGraph nodedGraph(const std::vector<LineString>& lines) {
+  std::vector<std::pair<Vec2, Vec2>> segs;
+  for (const LineString& l : lines)
+    for (size_t i = 1; i < l.size(); ++i)
+      if (l[i] != l[i - 1]) segs.emplace_back(l[i - 1], l[i]);
+  PlanarGraph graph;
+  if (segs.empty()) return graph;
+  std::vector<double> lengths;
+  for (const auto& [a, b] : segs) lengths.push_back(distance(a, b));
+  std::nth_element(lengths.begin(), lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2),
+                   lengths.end());
+  CellGrid grid(std::max(lengths[lengths.size() / 2], 1e-6) * 2.0);
+  for (size_t i = 0; i < segs.size(); ++i) {
+    const auto& [a, b] = segs[i];
+    grid.insertBox(std::min(a.x, b.x), std::min(a.y, b.y), std::max(a.x, b.x), std::max(a.y, b.y),
+                   static_cast<int>(i));
+  }
+  std::vector<std::vector<std::pair<double, Vec2>>> cuts(segs.size());
+  const double eps = 1e-9;
+  auto onInside = [&](const Vec2& p, const Vec2& a, const Vec2& b, double& t) {
+    const Vec2 ab = b - a;
+    const double len2 = dot(ab, ab);
+    t = dot(p - a, ab) / len2;
+    if (t <= eps || t >= 1.0 - eps) return false;
+    return distance(p, a + ab * t) <= eps * std::max(1.0, std::sqrt(len2));
+  };
+  grid.forEachCell([&](const std::vector<int>& ids) {
+    for (size_t x = 0; x < ids.size(); ++x)
+      for (size_t y = x + 1; y < ids.size(); ++y) {
+        const int i = std::min(ids[x], ids[y]), j = std::max(ids[x], ids[y]);
+        if (i == j) continue;
+        const auto& [a, b] = segs[static_cast<size_t>(i)];
+        const auto& [c, d] = segs[static_cast<size_t>(j)];
+        if (std::max(a.x, b.x) < std::min(c.x, d.x) || std::max(c.x, d.x) < std::min(a.x, b.x) ||
+            std::max(a.y, b.y) < std::min(c.y, d.y) || std::max(c.y, d.y) < std::min(a.y, b.y))
+          continue;
+        double t;
+        // Ends touching the other's inside (T-vertices, collinear overlaps).
+        if (onInside(c, a, b, t)) cuts[static_cast<size_t>(i)].emplace_back(t, c);
+        if (onInside(d, a, b, t)) cuts[static_cast<size_t>(i)].emplace_back(t, d);
+        if (onInside(a, c, d, t)) cuts[static_cast<size_t>(j)].emplace_back(t, a);
+        if (onInside(b, c, d, t)) cuts[static_cast<size_t>(j)].emplace_back(t, b);
+        // A proper crossing.
+        const Vec2 r = b - a, q = d - c;
+        const double den = cross(r, q);
+        if (std::abs(den) <= 1e-15 * dot(r, r) * dot(q, q)) continue;
+        const double tu = cross(c - a, q) / den, uu = cross(c - a, r) / den;
+        if (tu <= eps || tu >= 1.0 - eps || uu <= eps || uu >= 1.0 - eps) continue;
+        const Vec2 pnt = a + r * tu;
+        cuts[static_cast<size_t>(i)].emplace_back(tu, pnt);
+        cuts[static_cast<size_t>(j)].emplace_back(uu, pnt);
+      }
+  });
+  std::vector<std::pair<Vec2, Vec2>> pieces;
+  pieces.reserve(segs.size());
+  for (size_t i = 0; i < segs.size(); ++i) {
+    auto& cs = cuts[i];
+    std::sort(cs.begin(), cs.end(), [](const auto& u, const auto& v) {
+      return u.first != v.first
+                 ? u.first < v.first
+                 : (u.second.x != v.second.x ? u.second.x < v.second.x : u.second.y < v.second.y);
+    });
+    Vec2 prev = segs[i].first;
+    for (const auto& [t, p] : cs) {
+      if (p != prev) pieces.emplace_back(prev, p);
+      prev = p;
+    }
+    if (segs[i].second != prev) pieces.emplace_back(prev, segs[i].second);
+  }
+  auto less = [](const Vec2& a, const Vec2& b) { return a.x != b.x ? a.x < b.x : a.y < b.y; };
+  std::vector<Vec2> points;
+  points.reserve(pieces.size() * 2);
+  for (const auto& [a, b] : pieces) points.push_back(a), points.push_back(b);
+  std::sort(points.begin(), points.end(), less);
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  for (const Vec2& p : points) graph.addNode(p);
+  auto id = [&](const Vec2& p) {
+    return static_cast<int>(std::lower_bound(points.begin(), points.end(), p, less) - points.begin());
+  };
+  std::vector<std::pair<int, int>> edges;
+  edges.reserve(pieces.size());
+  for (const auto& [a, b] : pieces) {
+    const int i = id(a), j = id(b);
+    if (i != j) edges.emplace_back(std::min(i, j), std::max(i, j));
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  for (const auto& [i, j] : edges) graph.addEdge(i, j);
+  graph.sortRotations();
+  return graph;
 }
 
 }  // namespace
@@ -98,7 +196,7 @@ PlanarGraph straightenChains(const PlanarGraph& g, double tolerance, GraphStats&
     lines.push_back(std::move(kept));
   }
   // Straightened chains may now cross their neighbours: node them again.
-  return PlanarGraph::fromLines(lines, 0.0);
+  return nodedGraph(lines);
 }
 
 PlanarGraph structuredGraph(const Linework& lw, std::uint8_t layerMask, double gap, GraphStats& stats,
@@ -108,7 +206,7 @@ PlanarGraph structuredGraph(const Linework& lw, std::uint8_t layerMask, double g
     if (s.layers & layerMask)
       lines.push_back({lw.vertices[static_cast<size_t>(s.a)], lw.vertices[static_cast<size_t>(s.b)]});
   reportProgress(progress, 0.0, "noding");
-  const PlanarGraph noded = PlanarGraph::fromLines(lines, 0.0);
+  const PlanarGraph noded = nodedGraph(lines);
   reportProgress(progress, 0.4, "joining dangling ends");
 
   // Dangling ends: continue along their direction onto a segment, or join the nearest vertex.
@@ -242,7 +340,7 @@ PlanarGraph structuredGraph(const Linework& lw, std::uint8_t layerMask, double g
       all.push_back(std::move(l));
     }
     for (LineString& b : bridges) all.push_back(std::move(b));
-    joined = PlanarGraph::fromLines(all, 0.0);
+    joined = nodedGraph(all);
   }
   reportProgress(progress, 0.8, "removing fringe paths");
 
