@@ -8,6 +8,7 @@ PACKAGES=(
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev libeigen3-dev
   nlohmann-json3-dev libgtest-dev googletest sqlite3 python3 python3-numpy jq
   qgis python3-qgis qgis-providers grass-core xvfb xauth zip clang-format
+  python3-matplotlib
 )
 
 missing=()
