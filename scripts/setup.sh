@@ -10,6 +10,7 @@ PACKAGES=(
   qgis python3-qgis qgis-providers grass-core xvfb xauth zip clang-format
   python3-osmnx
   python3-distributed
+  python3-matplotlib
 )
 
 missing=()

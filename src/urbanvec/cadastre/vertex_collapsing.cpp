@@ -1,0 +1,176 @@
+// Vertex cleaning by collapsing (spec pueyo-urban-data.md §A.4). See vertex_collapsing.hpp.
+#include "urbanvec/cadastre/vertex_collapsing.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+#include <unordered_map>
+
+namespace urbanvec::cadastre {
+namespace {
+
+struct PairHash {
+  std::size_t operator()(const std::pair<std::uint64_t, std::uint64_t>& k) const {
+    return std::hash<std::uint64_t>()(k.first * 0x9E3779B97F4A7C15ULL ^ k.second);
+  }
+};
+
+std::pair<std::uint64_t, std::uint64_t> bitsOf(const Vec2& p) {
+  std::uint64_t x, y;
+  const double px = p.x + 0.0, py = p.y + 0.0;  // -0.0 and 0.0 are the same point
+  std::memcpy(&x, &px, 8);
+  std::memcpy(&y, &py, 8);
+  return {x, y};
+}
+
+/// A representative vertex: the original coordinates (distinct ids) it stands for.
+struct Rep {
+  std::vector<int> members;
+  Vec2 sum;
+  Vec2 pos;
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // bounding box of the members
+  void recompute(const std::vector<Vec2>& coords) {
+    sum = {0, 0};
+    x0 = y0 = std::numeric_limits<double>::infinity();
+    x1 = y1 = -x0;
+    for (int m : members) {
+      const Vec2& c = coords[static_cast<size_t>(m)];
+      sum += c;
+      x0 = std::min(x0, c.x), y0 = std::min(y0, c.y), x1 = std::max(x1, c.x), y1 = std::max(y1, c.y);
+    }
+    pos = sum / static_cast<double>(members.size());
+  }
+};
+
+}  // namespace
+
+Linework collapseVertices(const std::vector<CadLine>& lines, double threshold, CollapseStats& stats,
+                          const Progress& progress, bool revert, bool freeEndsOnly) {
+  stats = {};
+  // 1. Identical coordinates are one vertex (§A.4 case 1); ids in order of first occurrence.
+  std::unordered_map<std::pair<std::uint64_t, std::uint64_t>, int, PairHash> idOf;
+  std::vector<Vec2> coords;
+  std::vector<std::vector<int>> lineIds(lines.size());
+  for (size_t l = 0; l < lines.size(); ++l)
+    for (const Vec2& p : lines[l].line) {
+      ++stats.inputVertices;
+      auto [it, fresh] = idOf.emplace(bitsOf(p), static_cast<int>(coords.size()));
+      if (fresh) coords.push_back(p);
+      lineIds[l].push_back(it->second);
+    }
+  stats.distinctVertices = coords.size();
+  // Adjacency between distinct vertices: those joined by a segment never collapse together.
+  std::vector<std::vector<int>> adjacent(coords.size());
+  for (const auto& ids : lineIds)
+    for (size_t i = 1; i < ids.size(); ++i)
+      if (ids[i] != ids[i - 1]) {
+        adjacent[static_cast<size_t>(ids[i])].push_back(ids[i - 1]);
+        adjacent[static_cast<size_t>(ids[i - 1])].push_back(ids[i]);
+      }
+
+  // Vertices where lines already meet exactly (two or more segment ends) are sound; with
+  // `freeEndsOnly` two of them never collapse together, only a free end joins another vertex.
+  std::vector<char> joinedVertex(coords.size(), 0);
+  for (size_t i = 0; i < coords.size(); ++i) joinedVertex[i] = adjacent[i].size() >= 2;
+  std::vector<char> repJoined;  // per representative: all its members are joined vertices
+  // 2. Collapse onto the nearest representative within the threshold (§A.4 cases 2 and 3).
+  std::vector<int> repOf(coords.size(), -1);
+  std::vector<Rep> reps;
+  CellGrid grid(threshold);
+  const double t2 = threshold * threshold;
+  ProgressTicker ticker(progress, "collapsing vertices", coords.size());
+  std::vector<std::pair<double, int>> candidates;
+  for (size_t x = 0; x < coords.size(); ++x) {
+    ticker.tick();
+    const Vec2 p = coords[x];
+    candidates.clear();
+    grid.query(p.x - threshold, p.y - threshold, p.x + threshold, p.y + threshold, [&](int r) {
+      const Vec2 d = reps[static_cast<size_t>(r)].pos - p;
+      const double d2 = dot(d, d);
+      if (d2 < t2) candidates.emplace_back(d2, r);
+    });
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    int chosen = -1;
+    for (const auto& [d2, r] : candidates) {
+      bool joined = false;
+      for (int y : adjacent[x])
+        if (repOf[static_cast<size_t>(y)] == r) joined = true;
+      if (freeEndsOnly && joinedVertex[x] && repJoined[static_cast<size_t>(r)]) joined = true;
+      if (!joined) {
+        chosen = r;
+        break;
+      }
+    }
+    auto newRep = [&](int id) {
+      Rep rep;
+      rep.members = {id};
+      rep.recompute(coords);
+      repOf[static_cast<size_t>(id)] = static_cast<int>(reps.size());
+      repJoined.push_back(joinedVertex[static_cast<size_t>(id)]);
+      grid.insert(rep.pos, static_cast<int>(reps.size()));
+      reps.push_back(std::move(rep));
+    };
+    if (chosen < 0) {
+      newRep(static_cast<int>(x));
+      continue;
+    }
+    Rep& r = reps[static_cast<size_t>(chosen)];
+    // Anti-drift: every original the representative stands for must be within the threshold of p.
+    // The members' bounding box answers at once when its farthest corner is close enough.
+    const double fx = std::max(std::abs(r.x0 - p.x), std::abs(r.x1 - p.x));
+    const double fy = std::max(std::abs(r.y0 - p.y), std::abs(r.y1 - p.y));
+    int farthest = -1;
+    if (fx * fx + fy * fy >= t2) {
+      double worst = -1.0;
+      for (int m : r.members) {
+        const Vec2 d = coords[static_cast<size_t>(m)] - p;
+        if (dot(d, d) > worst) worst = dot(d, d), farthest = m;
+      }
+      if (worst < t2) farthest = -1;
+    }
+    grid.erase(r.pos, chosen);
+    if (farthest < 0) {
+      r.members.push_back(static_cast<int>(x));
+      repOf[x] = chosen;
+      repJoined[static_cast<size_t>(chosen)] = repJoined[static_cast<size_t>(chosen)] && joinedVertex[x];
+      r.recompute(coords);
+      grid.insert(r.pos, chosen);
+    } else if (!revert) {
+      // The collapse would stretch the representative over more than the threshold: p stays apart.
+      ++stats.reverted;
+      grid.insert(r.pos, chosen);
+      newRep(static_cast<int>(x));
+    } else {
+      // Revert (Fig. 10 ii.b): the farthest original and the new vertex become vertices of their own.
+      ++stats.reverted;
+      r.members.erase(std::find(r.members.begin(), r.members.end(), farthest));
+      r.recompute(coords);
+      grid.insert(r.pos, chosen);
+      newRep(farthest);
+      newRep(static_cast<int>(x));
+    }
+  }
+  ticker.finish();
+
+  // 3. Segments between representatives.
+  Linework out;
+  out.vertices.reserve(reps.size());
+  for (const Rep& r : reps) out.vertices.push_back(r.pos);
+  if (freeEndsOnly) out.sound.assign(repJoined.begin(), repJoined.end());
+  stats.outputVertices = reps.size();
+  for (size_t l = 0; l < lines.size(); ++l) {
+    const auto& ids = lineIds[l];
+    for (size_t i = 1; i < ids.size(); ++i) {
+      const int a = repOf[static_cast<size_t>(ids[i - 1])], b = repOf[static_cast<size_t>(ids[i])];
+      if (a == b) {
+        if (ids[i] != ids[i - 1]) ++stats.zeroLengthSegments;
+        continue;
+      }
+      out.segments.push_back({a, b, lines[l].layer});
+    }
+  }
+  return out;
+}
+
+}  // namespace urbanvec::cadastre

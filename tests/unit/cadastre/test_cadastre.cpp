@@ -1,0 +1,227 @@
+// Unit tests of the cadastre module (issue 17; spec pueyo-urban-data.md H.1).
+#include <gtest/gtest.h>
+
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "urbanvec/cadastre/cadastre.hpp"
+#include "urbanvec/cadastre/circuits.hpp"
+#include "urbanvec/cadastre/extrusion.hpp"
+#include "urbanvec/cadastre/floor_labels.hpp"
+#include "urbanvec/cadastre/pre_blocks.hpp"
+#include "urbanvec/cadastre/segment_cleaning.hpp"
+#include "urbanvec/cadastre/vertex_collapsing.hpp"
+#include "urbanvec/core/error.hpp"
+
+namespace urbanvec::cadastre {
+namespace {
+
+std::vector<CadLine> square(double x, double y, double s, std::uint8_t layer) {
+  return {{{{x, y}, {x + s, y}, {x + s, y + s}, {x, y + s}, {x, y}}, layer}};
+}
+
+void append(std::vector<CadLine>& a, const std::vector<CadLine>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+}
+
+TEST(VertexCollapsing, ChainAtSixTenthsOfTheThresholdDoesNotDrift) {
+  // H.1.6: free ends along a line 0.6 T apart must not all collapse into one vertex.
+  std::vector<CadLine> lines;
+  for (int i = 0; i < 10; ++i) lines.push_back({{{i * 0.6, 0.0}, {i * 0.6, 10.0 + i}}, kBlockLayer});
+  CollapseStats stats;
+  const Linework lw = collapseVertices(lines, 1.0, stats);
+  int bottom = 0;
+  for (const Vec2& v : lw.vertices) bottom += v.y < 1.0 ? 1 : 0;
+  EXPECT_GE(bottom, 5);  // every cluster spans less than the threshold: at least 10 * 0.6 / 1 ends stay apart
+  for (const Vec2& v : lw.vertices) EXPECT_LE(std::abs(v.y), 0.0 + (v.y > 1.0 ? 1e9 : 0.0));
+}
+
+TEST(VertexCollapsing, CloseEndsMergeToTheirMean) {
+  std::vector<CadLine> lines = {{{{0.0, 0.0}, {10.0, 0.0}}, kBlockLayer},
+                                {{{10.3, 0.0}, {10.3, 10.0}}, kBlockLayer}};
+  CollapseStats stats;
+  const Linework lw = collapseVertices(lines, 1.0, stats);
+  ASSERT_EQ(lw.vertices.size(), 3u);
+  EXPECT_NEAR(lw.vertices[1].x, 10.15, 1e-12);
+  EXPECT_EQ(stats.inputVertices, 4u);
+  EXPECT_NEAR(stats.collapsedShare(), 0.25, 1e-12);
+}
+
+TEST(VertexCollapsing, SoundVerticesStayApartButFreeEndsJoin) {
+  // A 0.4 m edge of a clean drawing is kept (its ends are joined by a segment and both are sound).
+  std::vector<CadLine> lines = {{{{0, 0}, {5, 0}, {5.4, 0}, {5.4, 5}, {0, 5}, {0, 0}}, kBuildingLayer}};
+  CollapseStats stats;
+  const Linework lw = collapseVertices(lines, 1.0, stats, {}, false, true);
+  EXPECT_EQ(lw.vertices.size(), 5u);
+  EXPECT_EQ(lw.segments.size(), 5u);
+}
+
+TEST(SegmentCleaning, TracedTwiceGivesOneCopyAndPartialOverlapsSplit) {
+  Linework lw;
+  lw.vertices = {{0, 0}, {10, 0}, {3, 0.05}, {7, -0.05}};
+  lw.segments = {{0, 1, kBlockLayer}, {1, 0, kLotLayer}, {2, 3, kBuildingLayer}};
+  SegmentCleaningStats stats;
+  cleanSegments(lw, 0.5, stats);
+  // 0-1 split at 2 and 3: 0-2, 2-3, 3-1; the partial copy 2-3 is one of them.
+  ASSERT_EQ(lw.segments.size(), 3u);
+  EXPECT_EQ(stats.duplicateSegments, 2u);
+  for (const Segment& s : lw.segments)
+    if ((s.a == 2 && s.b == 3) || (s.a == 3 && s.b == 2))
+      EXPECT_EQ(s.layers, kBlockLayer | kLotLayer | kBuildingLayer);
+}
+
+TEST(Circuits, FigureEightHasOneOutlineAndTwoInteriorCircuits) {
+  Linework lw;
+  lw.vertices = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {2, 1}, {2, 2}, {1, 2}};
+  lw.segments = {{0, 1, 1}, {1, 2, 1}, {2, 3, 1}, {3, 0, 1}, {2, 4, 1}, {4, 5, 1}, {5, 6, 1}, {6, 2, 1}};
+  GraphStats gs;
+  const PlanarGraph g = structuredGraph(lw, kBlockLayer, 0.5, gs);
+  const Circuits c = findCircuits(g, 0.0);
+  ASSERT_EQ(c.outlines.size(), 1u);
+  EXPECT_EQ(c.faces.size(), 2u);
+  EXPECT_NEAR(std::abs(signedArea(c.outlines[0])), 2.0, 1e-12);
+}
+
+TEST(Circuits, RingInsideABlockIsAHole) {
+  Linework lw;
+  lw.vertices = {{0, 0}, {10, 0}, {10, 10}, {0, 10}, {4, 4}, {6, 4}, {6, 6}, {4, 6}};
+  lw.segments = {{0, 1, 1}, {1, 2, 1}, {2, 3, 1}, {3, 0, 1}, {4, 5, 1}, {5, 6, 1}, {6, 7, 1}, {7, 4, 1}};
+  GraphStats gs;
+  const Circuits c = findCircuits(structuredGraph(lw, kBlockLayer, 0.5, gs), 0.0);
+  ASSERT_EQ(c.outlines.size(), 2u);
+  EXPECT_EQ(c.depth[1], 1);
+  ASSERT_EQ(c.faces.size(), 2u);
+  EXPECT_NEAR(area(c.faces[0]) + area(c.faces[1]), 100.0, 1e-9);
+}
+
+TEST(PreBlocks, UndershootAndFringeAreRepaired) {
+  // A square whose last side stops 0.8 m short of the corner, plus a dangling spur.
+  Linework lw;
+  lw.vertices = {{0, 0}, {10, 0}, {10, 10}, {0, 10}, {0, 0.8}, {10, 5}, {13, 5}};
+  lw.segments = {{0, 1, 1}, {1, 2, 1}, {2, 3, 1}, {3, 4, 1}, {5, 6, 1}};
+  GraphStats gs;
+  const Circuits c = findCircuits(structuredGraph(lw, kBlockLayer, 2.0, gs), 0.0);
+  ASSERT_EQ(c.faces.size(), 1u);
+  EXPECT_NEAR(area(c.faces[0]), 100.0, 1e-9);
+  EXPECT_EQ(gs.fringeEdgesRemoved, 1u);
+  EXPECT_EQ(gs.undershootsToSegment + gs.cornersClosed + gs.undershootsToVertex, 1u);
+}
+
+TEST(FloorLabels, RomanArabicAndSuffixes) {
+  EXPECT_EQ(parseFloorLabel("III").above, 3);
+  const FloorLabel b = parseFloorLabel("-I+III");
+  EXPECT_EQ(b.above, 3);
+  EXPECT_EQ(b.below, 1);
+  const FloorLabel t = parseFloorLabel("II+TZA");
+  EXPECT_EQ(t.above, 2);
+  EXPECT_EQ(t.ignoredParts, 1);
+  EXPECT_EQ(parseFloorLabel(" 4 ").above, 4);
+  EXPECT_EQ(parseFloorLabel("IV").above, 4);
+  EXPECT_EQ(parseFloorLabel("XIV").above, 14);
+  EXPECT_FALSE(parseFloorLabel("PATIO").valid);
+  EXPECT_FALSE(parseFloorLabel("").valid);
+}
+
+TEST(FloorLabels, HeightFormulaAndSeededOffset) {
+  EXPECT_DOUBLE_EQ(floorHeight(1, 3.0, 2.5, 0.0, 0, 0), 3.0);
+  EXPECT_DOUBLE_EQ(floorHeight(3, 3.0, 2.5, 0.0, 0, 0), 8.0);
+  EXPECT_DOUBLE_EQ(floorHeight(0, 3.0, 2.5, 0.5, 7, 0), 0.0);
+  const double h = floorHeight(2, 3.0, 2.5, 0.3, 7, 11);
+  EXPECT_NEAR(h, 5.5, 0.3);
+  EXPECT_NE(h, 5.5);
+  EXPECT_DOUBLE_EQ(h, floorHeight(2, 3.0, 2.5, 0.3, 7, 11));
+}
+
+TEST(Pipeline, BlocksParcelsBuildingsAndHeights) {
+  // Two blocks 6 m apart; block A has two lots and a building with III floors; drawn with a gap.
+  std::vector<CadLine> lines;
+  append(lines, square(0, 0, 40, kBlockLayer));
+  append(lines, square(46, 0, 40, kBlockLayer));
+  lines.push_back({{{20, 0.3}, {20, 40}}, kLotLayer});  // starts 0.3 m short of the block side
+  append(lines, square(5, 5, 10, kBuildingLayer));
+  std::vector<CadLabel> labels = {{{10, 10}, "III"}, {{30, 30}, "NOTE"}};
+  CadastreOptions o;
+  const CadastreResult r = structureCadastre(lines, labels, o);
+  EXPECT_EQ(r.blocks.size(), 2u);
+  EXPECT_EQ(r.subBlocks.size(), 2u);
+  EXPECT_EQ(r.parcels.size(), 3u);
+  EXPECT_EQ(r.report.labelsNotNumbers, 1u);
+  int withFloors = 0;
+  for (const BuildingOut& b : r.buildings)
+    if (b.floors > 0) {
+      ++withFloors;
+      EXPECT_EQ(b.floors, 3);
+      EXPECT_DOUBLE_EQ(b.height, 8.0);
+      EXPECT_NEAR(area(b.shape), 100.0, 1e-6);
+      EXPECT_EQ(b.block, 0);
+    }
+  EXPECT_EQ(withFloors, 1);
+  // Every block's area is covered by its parcels (a partition).
+  double parcelArea = 0;
+  for (const AreaOut& p : r.parcels) parcelArea += area(p.shape);
+  EXPECT_NEAR(parcelArea, 3200.0, 1e-6);
+}
+
+TEST(Pipeline, RejectsBadThresholds) {
+  std::vector<CadLine> lines = square(0, 0, 10, kBlockLayer);
+  CadastreOptions o;
+  o.collapsingThreshold = 3.0;
+  o.blockThreshold = 2.0;
+  try {
+    structureCadastre(lines, {}, o);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::InvalidOption);
+  }
+  o.collapsingThreshold = 0.0;
+  EXPECT_THROW(structureCadastre(lines, {}, o), Error);
+}
+
+TEST(Extrusion, PrismsAreWatertightWithOutwardNormals) {
+  BuildingOut b;
+  Polygon p{{{0, 0}, {10, 0}, {10, 10}, {0, 10}, {0, 0}}, {{{4, 4}, {4, 6}, {6, 6}, {6, 4}, {4, 4}}}};
+  b.shape = {p};
+  b.height = 5.5;
+  BuildingOut courtyard;
+  courtyard.shape = {Polygon{{{20, 0}, {25, 0}, {25, 5}, {20, 5}, {20, 0}}, {}}};
+  const Mesh m = extrudeBuildings({b, courtyard});
+  // Every directed edge appears once and its reverse once: closed and consistently oriented.
+  std::map<std::pair<int, int>, int> directed;
+  for (const auto& t : m.triangles)
+    for (int i = 0; i < 3; ++i) ++directed[{t[i], t[(i + 1) % 3]}];
+  for (const auto& [e, n] : directed) {
+    EXPECT_EQ(n, 1);
+    EXPECT_EQ(directed.count({e.second, e.first}), 1u);
+  }
+  // Signed volume (divergence theorem) = area x height > 0: normals point out.
+  double volume = 0;
+  for (const auto& t : m.triangles) {
+    const auto& a = m.vertices[static_cast<size_t>(t[0])];
+    const auto& c = m.vertices[static_cast<size_t>(t[1])];
+    const auto& d = m.vertices[static_cast<size_t>(t[2])];
+    volume += (a[0] * (c[1] * d[2] - c[2] * d[1]) - a[1] * (c[0] * d[2] - c[2] * d[0]) +
+               a[2] * (c[0] * d[1] - c[1] * d[0])) /
+              6.0;
+  }
+  EXPECT_NEAR(volume, 96.0 * 5.5, 1e-6);
+  for (int o : m.triangleObject) EXPECT_EQ(o, 0);  // the 0-height courtyard makes no prism
+}
+
+TEST(Extrusion, CityJsonLod1) {
+  BuildingOut b;
+  b.shape = {Polygon{{{0, 0}, {10, 0}, {10, 10}, {0, 10}, {0, 0}}, {}}};
+  b.height = 8.0;
+  b.floors = 3;
+  const auto doc = nlohmann::json::parse(cityJsonText({b}, 32628));
+  EXPECT_EQ(doc["type"], "CityJSON");
+  EXPECT_EQ(doc["version"], "1.1");
+  EXPECT_EQ(doc["vertices"].size(), 8u);
+  const auto& obj = doc["CityObjects"]["building_0"];
+  EXPECT_EQ(obj["type"], "Building");
+  EXPECT_EQ(obj["geometry"][0]["lod"], "1");
+  EXPECT_EQ(obj["geometry"][0]["boundaries"][0].size(), 6u);  // 4 walls + floor + roof
+  EXPECT_EQ(doc["metadata"]["referenceSystem"], "https://www.opengis.net/def/crs/EPSG/0/32628");
+}
+
+}  // namespace
+}  // namespace urbanvec::cadastre
