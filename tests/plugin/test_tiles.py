@@ -36,7 +36,7 @@ class TiledVectorize(unittest.TestCase):
         tmp = tempfile.mkdtemp()
         single = os.path.join(tmp, 'single.gpkg')
         tiled = os.path.join(tmp, 'tiled.gpkg')
-        common = {'LANDUSE': os.path.join(GRID, 'landuse.tif'), 'ROADS_ONLY': True}
+        common = {'LANDUSE': os.path.join(GRID, 'landuse.tif'), 'ROADS_ONLY': True, 'NO_THROUGH_ROADS': True}
         processing.run('urbanvec:vectorize', dict(common, OUTPUT=single))
         processing.run('urbanvec:vectorize', dict(common, OUTPUT=tiled, TILED_WORKERS=2, TILE_CELLS=50,
                                                   HALO_CELLS=32))

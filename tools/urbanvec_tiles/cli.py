@@ -162,6 +162,11 @@ def check_scheduler(address, timeout):
 
 def run(argv):
     opts, vargs, (landuse, output) = parse_run(argv)
+    # Stage B7 (through roads and straight roads) decides on whole chains between intersections, which a
+    # window may cut anywhere: it is not tile-local, so tiles run without it and a tiled run equals
+    # `urbanvec vectorize -no-through-roads` (docs/scale.md).
+    if "-no-through-roads" not in vargs:
+        vargs.append("-no-through-roads")
     quiet = bool(opts.get("-q"))
     progress = Progress(quiet, opts.get("-progress") == "lines")
     tile_cells = integer(opts, "-tile")
