@@ -41,23 +41,27 @@ app::CommandSpec spec() {
                    {"importance", "Importance file: .osmi, or a vector dataset with an 'importance' field.",
                     Role::InputFile},
                    {"output", "Vector file to create (GeoPackage).", Role::OutputVector}};
-  s.outputLayers = {"streets", "places", "place_lines", "place_points", "full_streets", "seams", "shrink_report"};
+  s.outputLayers = {"streets",      "places", "place_lines",  "place_points",
+                    "full_streets", "seams",  "shrink_report"};
   auto& o = s.options;
   o.push_back(option("-shf", ValueType::Real, "<fraction>", "shF: fraction of streets kept in the skeleton.")
                   .byDefault(app::numberText(d.selection.shrinkFactor)));
   o.push_back(option("-seams", ValueType::Integer, "<vertical> <horizontal>",
                      "Seams to remove: vertical (columns) and horizontal (rows) (imageSizeReduction).")
                   .values(2)
-                  .byDefault(std::to_string(d.carving.verticalSeams) + " " + std::to_string(d.carving.horizontalSeams)));
-  o.push_back(option("-image-size", ValueType::Integer, "<pixels>", "imageSize: larger side of the skeleton image.")
-                  .byDefault(std::to_string(d.carving.imageSize))
-                  .withUnit("pixels"));
+                  .byDefault(std::to_string(d.carving.verticalSeams) + " " +
+                             std::to_string(d.carving.horizontalSeams)));
+  o.push_back(
+      option("-image-size", ValueType::Integer, "<pixels>", "imageSize: larger side of the skeleton image.")
+          .byDefault(std::to_string(d.carving.imageSize))
+          .withUnit("pixels"));
   o.push_back(option("-m-degree", ValueType::Integer, "<segments>",
                      "m-degree: most segments of a dead-end connection (the thesis's Firenze run uses 10).")
                   .byDefault(std::to_string(d.connection.mDegree)));
-  o.push_back(option("-imp-dist-balance", ValueType::Real, "<alpha>",
-                     "impDistBalance: A* cost alpha*d/impW + (1-alpha)*d; 1 = importance only, 0 = distance only.")
-                  .byDefault(app::numberText(d.connection.impDistBalance)));
+  o.push_back(
+      option("-imp-dist-balance", ValueType::Real, "<alpha>",
+             "impDistBalance: A* cost alpha*d/impW + (1-alpha)*d; 1 = importance only, 0 = distance only.")
+          .byDefault(app::numberText(d.connection.impDistBalance)));
   o.push_back(option("-gray-dist-balance", ValueType::Real, "<beta>",
                      "grayDistBalance: energy = beta*inverted grey + (1-beta)*inverted distance field.")
                   .byDefault(app::numberText(d.carving.grayDistBalance)));
@@ -67,11 +71,12 @@ app::CommandSpec spec() {
                   .byDefault(app::numberText(d.selection.proximityThreshold))
                   .withUnit("m")
                   .atLeast(0));
-  o.push_back(option("-highway-weight", ValueType::String, "<highway>=<weight>",
-                     "Street-type weight (highwayWeights_d; strT = weight/10); defaults motorway=3 primary=2.5 "
-                     "secondary=2 tertiary=1.5 residential=1, other 0.5.")
-                  .many()
-                  .isAdvanced());
+  o.push_back(
+      option("-highway-weight", ValueType::String, "<highway>=<weight>",
+             "Street-type weight (highwayWeights_d; strT = weight/10); defaults motorway=3 primary=2.5 "
+             "secondary=2 tertiary=1.5 residential=1, other 0.5.")
+          .many()
+          .isAdvanced());
   o.push_back(option("-keep-unimportant-clusters", ValueType::Flag, "",
                      "Keep disconnected clusters without an important place (noImpClusters = False).")
                   .isAdvanced());
@@ -88,29 +93,36 @@ app::CommandSpec spec() {
   o.push_back(option("-freeze-all-street-nodes", ValueType::Flag, "",
                      "Freeze every skeleton street node, so no street loses a node.")
                   .isAdvanced());
-  o.push_back(option("-keep-carved-nodes", ValueType::Flag, "",
-                     "Keep street nodes whose pixel a seam removes (moved onto the seam edge) instead of deleting them.")
-                  .isAdvanced());
-  o.push_back(option("-keep-outside-bbox", ValueType::Flag, "",
-                     "Keep street nodes outside the file's download bounds (cleaning removes them by default).")
-                  .isAdvanced());
-  o.push_back(option("-straighten", ValueType::Flag, "", "Re-straighten ways that were straight in the original."));
+  o.push_back(
+      option(
+          "-keep-carved-nodes", ValueType::Flag, "",
+          "Keep street nodes whose pixel a seam removes (moved onto the seam edge) instead of deleting them.")
+          .isAdvanced());
+  o.push_back(
+      option("-keep-outside-bbox", ValueType::Flag, "",
+             "Keep street nodes outside the file's download bounds (cleaning removes them by default).")
+          .isAdvanced());
+  o.push_back(
+      option("-straighten", ValueType::Flag, "", "Re-straighten ways that were straight in the original."));
   o.push_back(option("-straight-tolerance", ValueType::Real, "<metres>",
                      "A way is straight when its interior nodes are within this distance of its chord.")
                   .byDefault(app::numberText(d.post.straightTolerance))
                   .withUnit("m")
                   .atLeast(0)
                   .isAdvanced());
-  o.push_back(option("-rotate", ValueType::String, "<degrees|auto>",
-                     "Rotation trick: rotate counter-clockwise before carving and back after; 'auto' aligns the "
-                     "dominant street bearing with the axes.")
-                  .byDefault("0"));
-  o.push_back(option("-no-full-map", ValueType::Flag, "", "Do not deform the full street map (full_streets empty).")
-                  .isAdvanced());
+  o.push_back(
+      option("-rotate", ValueType::String, "<degrees|auto>",
+             "Rotation trick: rotate counter-clockwise before carving and back after; 'auto' aligns the "
+             "dominant street bearing with the axes.")
+          .byDefault("0"));
+  o.push_back(
+      option("-no-full-map", ValueType::Flag, "", "Do not deform the full street map (full_streets empty).")
+          .isAdvanced());
   o.push_back(option("-importance-layer", ValueType::String, "<name>",
                      "Layer of a vector importance file; default every layer with the importance field.")
                   .isAdvanced());
-  o.push_back(option("-importance-field", ValueType::String, "<name>", "Importance field of a vector importance file.")
+  o.push_back(option("-importance-field", ValueType::String, "<name>",
+                     "Importance field of a vector importance file.")
                   .byDefault("importance")
                   .isAdvanced());
   o.push_back(option("-t_srs", ValueType::String, "<crs>",
@@ -120,7 +132,8 @@ app::CommandSpec spec() {
                   .isAdvanced());
   for (const app::OptionSpec& v : app::vectorOutputOptions()) o.push_back(v);
   s.examples = {"urbanvec shrink -shf 0.15 -seams 100 100 city.osm.pbf places.osmi small.gpkg",
-                "urbanvec shrink -shf 0.2 -seams 150 150 -rotate auto -straighten eixample.osm eixample.osmi small.gpkg"};
+                "urbanvec shrink -shf 0.2 -seams 150 150 -rotate auto -straighten eixample.osm eixample.osmi "
+                "small.gpkg"};
   return s;
 }
 
@@ -165,7 +178,13 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   const std::string outputPath = args.positionals()[2];
   shrink::ShrinkOptions options;
   options.selection.shrinkFactor = args.real("-shf");
-  const std::vector<std::string> seams = args.values("-seams");
+  // The default arrives as one "v h" text, a command-line value as two: split every value on blanks.
+  std::vector<std::string> seams;
+  for (const std::string& v : args.values("-seams")) {
+    std::istringstream words(v);
+    for (std::string word; words >> word;) seams.push_back(word);
+  }
+  if (seams.size() < 2) throw invalidOption("-seams needs two counts: <vertical> <horizontal>");
   auto seamCount = [&](const std::string& text) {
     try {
       size_t used = 0;
@@ -191,9 +210,11 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
     options.selection.highwayWeights[kv.substr(0, eq)] = w;
   }
   options.connection.removeUnimportantClusters = !args.flag("-keep-unimportant-clusters");
-  options.carving.order = args.str("-seam-order") == "blocks" ? shrink::SeamOrder::Blocks : shrink::SeamOrder::Interleaved;
-  options.carving.landmarkFreeze =
-      args.str("-freeze-landmarks") == "nodes" ? shrink::LandmarkFreeze::Nodes : shrink::LandmarkFreeze::BoundingBox;
+  options.carving.order =
+      args.str("-seam-order") == "blocks" ? shrink::SeamOrder::Blocks : shrink::SeamOrder::Interleaved;
+  options.carving.landmarkFreeze = args.str("-freeze-landmarks") == "nodes"
+                                       ? shrink::LandmarkFreeze::Nodes
+                                       : shrink::LandmarkFreeze::BoundingBox;
   options.carving.freezeAllStreetNodes = args.flag("-freeze-all-street-nodes");
   options.carving.keepCarvedNodes = args.flag("-keep-carved-nodes");
   options.cleaning.removeOutsideBounds = !args.flag("-keep-outside-bbox");
@@ -241,16 +262,18 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   lines.name = "place_lines", lines.geometryType = GeometryType::LineString;
   points.name = "place_points", points.geometryType = GeometryType::Point;
   for (Layer* l : {&polygons, &lines, &points})
-    l->fields = {{"place_id", FieldType::String}, {"osm_id", FieldType::Integer}, {"name", FieldType::String},
+    l->fields = {{"place_id", FieldType::String},
+                 {"osm_id", FieldType::Integer},
+                 {"name", FieldType::String},
                  {"appear_w", FieldType::Real}};
   for (const shrink::ShrunkPlace& p : result.places) {
     Feature f;
     f.geometry = p.geometry;
-    f.values = {p.placeId, static_cast<std::int64_t>(p.osmId), p.name.empty() ? FieldValue{} : FieldValue{p.name},
-                p.appearW};
+    f.values = {p.placeId, static_cast<std::int64_t>(p.osmId),
+                p.name.empty() ? FieldValue{} : FieldValue{p.name}, p.appearW};
     Layer& target = std::holds_alternative<Polygon>(p.geometry) ? polygons
-                    : std::holds_alternative<Vec2>(p.geometry)   ? points
-                                                                 : lines;
+                    : std::holds_alternative<Vec2>(p.geometry)  ? points
+                                                                : lines;
     target.features.push_back(std::move(f));
   }
   layers.push_back(std::move(polygons));
@@ -262,7 +285,9 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   seamLayer.geometryType = GeometryType::LineString;
   seamLayer.fields = {{"seam", FieldType::Integer}, {"direction", FieldType::String}};
   for (const shrink::SeamLine& sl : result.seams)
-    seamLayer.features.push_back({sl.line, {static_cast<std::int64_t>(sl.number), std::string(sl.vertical ? "vertical" : "horizontal")}});
+    seamLayer.features.push_back(
+        {sl.line,
+         {static_cast<std::int64_t>(sl.number), std::string(sl.vertical ? "vertical" : "horizontal")}});
   layers.push_back(std::move(seamLayer));
   Layer report;
   report.name = "shrink_report";

@@ -76,10 +76,14 @@ double unitValue(const std::string& text, bool& ok) {
 std::vector<int> boundingRing(Builder& b, const io::OsmiPlace& place, const std::string& path) {
   std::vector<int> ring;
   const auto& m = place.members;
-  auto where = [&] { return "importance file '" + path + "' line " + std::to_string(place.line) + ": bounding place '" + place.id + "'"; };
+  auto where = [&] {
+    return "importance file '" + path + "' line " + std::to_string(place.line) + ": bounding place '" +
+           place.id + "'";
+  };
   for (size_t i = 0; i + 1 < m.size(); i += 2) {
     if (m[i].type != 'n' || m[i + 1].type != 'w' || i + 2 >= m.size() || m[i + 2].type != 'n')
-      throw invalidInput(where() + " must list members node, way, node, way, ..., node (the first node again)");
+      throw invalidInput(where() +
+                         " must list members node, way, node, way, ..., node (the first node again)");
     const io::OsmWay* way = b.osm.way(m[i + 1].ref);
     if (!way) return {};
     auto find = [&](std::int64_t id) {
@@ -106,7 +110,8 @@ void readOsmi(Builder& b, const std::string& path, std::vector<Place>& places, i
               std::vector<std::string>& missingExamples) {
   const io::OsmiFile file = io::readOsmiFile(path);
   for (const io::OsmiPlace& p : file.places) {
-    const std::string where = "importance file '" + path + "' line " + std::to_string(p.line) + ": place '" + p.id + "'";
+    const std::string where =
+        "importance file '" + path + "' line " + std::to_string(p.line) + ": place '" + p.id + "'";
     Place place;
     place.id = p.id;
     if (const std::string* name = p.tag("name")) place.name = *name;
@@ -122,7 +127,10 @@ void readOsmi(Builder& b, const std::string& path, std::vector<Place>& places, i
     auto noteMissing = [&](char type, std::int64_t ref) {
       ++missing;
       if (missingExamples.size() < 5)
-        missingExamples.push_back(std::string(type == 'n' ? "node " : type == 'w' ? "way " : "relation ") + std::to_string(ref));
+        missingExamples.push_back(std::string(type == 'n'   ? "node "
+                                              : type == 'w' ? "way "
+                                                            : "relation ") +
+                                  std::to_string(ref));
     };
     auto addWay = [&](const io::OsmWay& way) {
       if (place.osmId == 0) place.osmId = way.id;
@@ -137,12 +145,14 @@ void readOsmi(Builder& b, const std::string& path, std::vector<Place>& places, i
     };
     if (bounding) {
       for (const io::OsmiMember& m : p.members)
-        if ((m.type == 'n' && !b.osm.node(m.ref)) || (m.type == 'w' && !b.osm.way(m.ref))) noteMissing(m.type, m.ref);
+        if ((m.type == 'n' && !b.osm.node(m.ref)) || (m.type == 'w' && !b.osm.way(m.ref)))
+          noteMissing(m.type, m.ref);
       place.boundingRing = boundingRing(b, p, path);
       if (!p.members.empty()) place.osmId = p.members.front().ref;
       for (const io::OsmiMember& m : p.members)
         if (m.type == 'w')
-          if (const io::OsmWay* way = b.osm.way(m.ref); way && !way->highway.empty()) place.streetIds.push_back(way->id);
+          if (const io::OsmWay* way = b.osm.way(m.ref); way && !way->highway.empty())
+            place.streetIds.push_back(way->id);
     } else {
       for (const io::OsmiMember& m : p.members) {
         if (m.type == 'n') {
@@ -184,8 +194,10 @@ void readOsmi(Builder& b, const std::string& path, std::vector<Place>& places, i
 void readImportanceLayers(Builder& b, const std::string& path, const ShrinkSourceOptions& options,
                           const std::string& crsWkt, std::vector<Place>& places) {
   std::vector<std::string> layers;
-  if (!options.importanceLayer.empty()) layers.push_back(options.importanceLayer);
-  else layers = io::listVectorLayers(path, "importance file");
+  if (!options.importanceLayer.empty())
+    layers.push_back(options.importanceLayer);
+  else
+    layers = io::listVectorLayers(path, "importance file");
   io::VectorReadOptions read;
   read.targetCrs = crsWkt;
   int usable = 0;
@@ -196,18 +208,22 @@ void readImportanceLayers(Builder& b, const std::string& path, const ShrinkSourc
     const int field = layer.fieldIndex(options.importanceField);
     if (field < 0) {
       if (!options.importanceLayer.empty())
-        throw invalidInput("layer '" + name + "' of importance file '" + path + "' has no '" + options.importanceField + "' field");
+        throw invalidInput("layer '" + name + "' of importance file '" + path + "' has no '" +
+                           options.importanceField + "' field");
       continue;
     }
     ++usable;
     const int nameField = layer.fieldIndex("name"), functionField = layer.fieldIndex("function");
     for (size_t f = 0; f < layer.features.size(); ++f) {
       const Feature& feature = layer.features[f];
-      const std::string where = "importance file '" + path + "' layer '" + name + "' feature " + std::to_string(f + 1);
+      const std::string where =
+          "importance file '" + path + "' layer '" + name + "' feature " + std::to_string(f + 1);
       const FieldValue& v = feature.values[static_cast<size_t>(field)];
       double w = 0.0;
-      if (const double* d = std::get_if<double>(&v)) w = *d;
-      else if (const std::int64_t* i = std::get_if<std::int64_t>(&v)) w = static_cast<double>(*i);
+      if (const double* d = std::get_if<double>(&v))
+        w = *d;
+      else if (const std::int64_t* i = std::get_if<std::int64_t>(&v))
+        w = static_cast<double>(*i);
       else if (const std::string* s = std::get_if<std::string>(&v)) {
         bool ok = false;
         w = unitValue(*s, ok);
@@ -216,48 +232,61 @@ void readImportanceLayers(Builder& b, const std::string& path, const ShrinkSourc
         throw invalidInput(where + ": " + options.importanceField + " is empty");
       }
       if (!(w >= 0.0 && w <= 1.0))
-        throw invalidInput(where + ": " + options.importanceField + " " + std::to_string(w) + " is outside 0..1");
+        throw invalidInput(where + ": " + options.importanceField + " " + std::to_string(w) +
+                           " is outside 0..1");
       Place place;
       place.id = name + ":" + std::to_string(f + 1);
       place.appearW = w;
       if (nameField >= 0)
-        if (const std::string* s = std::get_if<std::string>(&feature.values[static_cast<size_t>(nameField)])) place.name = *s;
+        if (const std::string* s = std::get_if<std::string>(&feature.values[static_cast<size_t>(nameField)]))
+          place.name = *s;
       bool bounding = false;
       if (functionField >= 0)
-        if (const std::string* s = std::get_if<std::string>(&feature.values[static_cast<size_t>(functionField)]))
+        if (const std::string* s =
+                std::get_if<std::string>(&feature.values[static_cast<size_t>(functionField)]))
           bounding = *s == "bounding" || *s == "boundary";
       auto addLine = [&](const std::vector<Vec2>& pts, bool closed) {
         std::vector<int> nodes;
         for (const Vec2& p : pts) nodes.push_back(b.synthetic(p));
         if (closed && nodes.size() >= 3) {
-          if (pts.front() == pts.back()) nodes.back() = nodes.front();
-          else nodes.push_back(nodes.front());
+          if (pts.front() == pts.back())
+            nodes.back() = nodes.front();
+          else
+            nodes.push_back(nodes.front());
         }
-        if (bounding && closed) place.boundingRing = nodes;
+        if (bounding && closed)
+          place.boundingRing = nodes;
         else {
           place.shapes.push_back(std::move(nodes));
           place.shapeIds.push_back(0);
         }
       };
       const Geometry& g = feature.geometry;
-      if (const Vec2* p = std::get_if<Vec2>(&g)) addLine({*p}, false);
-      else if (const LineString* l = std::get_if<LineString>(&g)) addLine(*l, false);
-      else if (const MultiLineString* ml = std::get_if<MultiLineString>(&g)) for (const auto& l2 : *ml) addLine(l2, false);
-      else if (const Polygon* poly = std::get_if<Polygon>(&g)) addLine(poly->outer, true);
-      else if (const MultiPolygon* mp = std::get_if<MultiPolygon>(&g)) for (const auto& p2 : *mp) addLine(p2.outer, true);
+      if (const Vec2* p = std::get_if<Vec2>(&g))
+        addLine({*p}, false);
+      else if (const LineString* l = std::get_if<LineString>(&g))
+        addLine(*l, false);
+      else if (const MultiLineString* ml = std::get_if<MultiLineString>(&g))
+        for (const auto& l2 : *ml) addLine(l2, false);
+      else if (const Polygon* poly = std::get_if<Polygon>(&g))
+        addLine(poly->outer, true);
+      else if (const MultiPolygon* mp = std::get_if<MultiPolygon>(&g))
+        for (const auto& p2 : *mp) addLine(p2.outer, true);
       if (place.shapes.empty() && place.boundingRing.empty()) continue;
       places.push_back(std::move(place));
     }
   }
   if (usable == 0)
-    throw invalidInput("importance file '" + path + "' is neither an .osmi file nor a vector dataset with an '" +
-                       options.importanceField + "' field");
+    throw invalidInput("importance file '" + path +
+                       "' is neither an .osmi file nor a vector dataset with an '" + options.importanceField +
+                       "' field");
 }
 
 }  // namespace
 
 ShrinkSource readShrinkSource(const std::string& osmPath, const std::string& importancePath,
-                              const ShrinkSourceOptions& options, const std::function<void(const std::string&)>& warn) {
+                              const ShrinkSourceOptions& options,
+                              const std::function<void(const std::string&)>& warn) {
   io::ensureGdal();
   const io::OsmData osm = io::readOsmFile(osmPath, "OSM file");
   if (osm.nodes.empty()) throw invalidInput("OSM file '" + osmPath + "' holds no node");
@@ -266,7 +295,8 @@ ShrinkSource readShrinkSource(const std::string& osmPath, const std::string& imp
     cLon = (osm.minLon + osm.maxLon) / 2, cLat = (osm.minLat + osm.maxLat) / 2;
   } else {
     double a = 1e300, bb = 1e300, c = -1e300, d = -1e300;
-    for (const io::OsmNode& n : osm.nodes) a = std::min(a, n.lon), c = std::max(c, n.lon), bb = std::min(bb, n.lat), d = std::max(d, n.lat);
+    for (const io::OsmNode& n : osm.nodes)
+      a = std::min(a, n.lon), c = std::max(c, n.lon), bb = std::min(bb, n.lat), d = std::max(d, n.lat);
     cLon = (a + c) / 2, cLat = (bb + d) / 2;
   }
   ShrinkSource source;
@@ -279,7 +309,8 @@ ShrinkSource readShrinkSource(const std::string& osmPath, const std::string& imp
   to.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   std::unique_ptr<OGRCoordinateTransformation, void (*)(OGRCoordinateTransformation*)> transform(
       OGRCreateCoordinateTransformation(&from, &to), OGRCoordinateTransformation::DestroyCT);
-  if (!transform) throw invalidOption("-t_srs: cannot transform from WGS 84 to " + io::crsShortName(source.crsWkt));
+  if (!transform)
+    throw invalidOption("-t_srs: cannot transform from WGS 84 to " + io::crsShortName(source.crsWkt));
 
   City& city = source.input.city;
   Builder b{osm, city, transform.get(), {}, -1};
@@ -287,6 +318,10 @@ ShrinkSource readShrinkSource(const std::string& osmPath, const std::string& imp
     if (way.highway.empty()) continue;
     city.streets.push_back({way.id, b.wayNodes(way), way.highway, way.name});
   }
+  if (city.streets.empty())
+    throw invalidInput("OSM file '" + osmPath +
+                       "' has no street: no way with a highway tag (city shrinking "
+                       "works on the street network)");
   std::vector<std::string> examples;
   if (io::looksLikeOsmi(importancePath)) {
     readOsmi(b, importancePath, source.input.places, source.missingIds, examples);
@@ -300,9 +335,9 @@ ShrinkSource readShrinkSource(const std::string& osmPath, const std::string& imp
     std::string list;
     for (const std::string& e : examples) list += (list.empty() ? "" : ", ") + e;
     warn(std::to_string(source.missingIds) + " member id" + (source.missingIds == 1 ? " of '" : "s of '") +
-         importancePath + "' " + (source.missingIds == 1 ? "is" : "are") + " not in '" + osmPath + "' (" + list +
-         (source.missingIds > static_cast<int>(examples.size()) ? ", ..." : "") + "); going on without " +
-         (source.missingIds == 1 ? "it" : "them"));
+         importancePath + "' " + (source.missingIds == 1 ? "is" : "are") + " not in '" + osmPath + "' (" +
+         list + (source.missingIds > static_cast<int>(examples.size()) ? ", ..." : "") +
+         "); going on without " + (source.missingIds == 1 ? "it" : "them"));
   }
   return source;
 }

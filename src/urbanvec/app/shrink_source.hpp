@@ -11,8 +11,8 @@
 namespace urbanvec::app {
 
 struct ShrinkSourceOptions {
-  std::string targetCrs;          ///< -t_srs; empty = the UTM zone of the data's centre
-  std::string importanceLayer;    ///< OGR importance input: layer name; empty = every layer with the field
+  std::string targetCrs;        ///< -t_srs; empty = the UTM zone of the data's centre
+  std::string importanceLayer;  ///< OGR importance input: layer name; empty = every layer with the field
   std::string importanceField = "importance";
 };
 

@@ -15,7 +15,8 @@ namespace {
 
 template <class T>
 const T* findById(const std::vector<T>& items, std::int64_t id) {
-  auto it = std::lower_bound(items.begin(), items.end(), id, [](const T& t, std::int64_t v) { return t.id < v; });
+  auto it =
+      std::lower_bound(items.begin(), items.end(), id, [](const T& t, std::int64_t v) { return t.id < v; });
   return it != items.end() && it->id == id ? &*it : nullptr;
 }
 
@@ -39,7 +40,9 @@ struct Collector : osmium::handler::Handler {
     rel.id = r.id();
     if (const char* name = r.tags()["name"]) rel.name = name;
     for (const osmium::RelationMember& m : r.members()) {
-      const char t = m.type() == osmium::item_type::node ? 'n' : m.type() == osmium::item_type::way ? 'w' : 'r';
+      const char t = m.type() == osmium::item_type::node  ? 'n'
+                     : m.type() == osmium::item_type::way ? 'w'
+                                                          : 'r';
       rel.members.push_back({t, m.ref(), m.role()});
     }
     data.relations.push_back(std::move(rel));
@@ -60,26 +63,35 @@ std::string sniffFormat(const std::string& path) {
 
 }  // namespace
 
-const OsmNode* OsmData::node(std::int64_t id) const { return findById(nodes, id); }
-const OsmWay* OsmData::way(std::int64_t id) const { return findById(ways, id); }
-const OsmRelation* OsmData::relation(std::int64_t id) const { return findById(relations, id); }
+const OsmNode* OsmData::node(std::int64_t id) const {
+  return findById(nodes, id);
+}
+const OsmWay* OsmData::way(std::int64_t id) const {
+  return findById(ways, id);
+}
+const OsmRelation* OsmData::relation(std::int64_t id) const {
+  return findById(relations, id);
+}
 
 OsmData readOsmFile(const std::string& path, const std::string& role) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw invalidInput(role + " '" + path + "' does not exist");
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw invalidInput(role + " '" + path + "' does not exist");
   OsmData data;
   try {
     std::string format;
     const std::string lower = [&] {
       std::string s = path;
-      std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+      std::transform(s.begin(), s.end(), s.begin(),
+                     [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
       return s;
     }();
     auto endsWith = [&](const char* suffix) {
       const std::string s(suffix);
       return lower.size() >= s.size() && lower.compare(lower.size() - s.size(), s.size(), s) == 0;
     };
-    if (!(endsWith(".pbf") || endsWith(".osm") || endsWith(".osm.bz2") || endsWith(".osm.gz") || endsWith(".o5m"))) {
+    if (!(endsWith(".pbf") || endsWith(".osm") || endsWith(".osm.bz2") || endsWith(".osm.gz") ||
+          endsWith(".o5m"))) {
       format = sniffFormat(path);
       if (format.empty())
         throw invalidInput(role + " '" + path + "' is not an OpenStreetMap file (.osm XML or .osm.pbf)");
@@ -113,8 +125,10 @@ OsmData readOsmFile(const std::string& path, const std::string& role) {
     throw invalidInput(role + " '" + path + "' cannot be read as OpenStreetMap: " + e.what());
   }
   auto byId = [](const auto& a, const auto& b) { return a.id < b.id; };
-  if (!std::is_sorted(data.nodes.begin(), data.nodes.end(), byId)) std::stable_sort(data.nodes.begin(), data.nodes.end(), byId);
-  if (!std::is_sorted(data.ways.begin(), data.ways.end(), byId)) std::stable_sort(data.ways.begin(), data.ways.end(), byId);
+  if (!std::is_sorted(data.nodes.begin(), data.nodes.end(), byId))
+    std::stable_sort(data.nodes.begin(), data.nodes.end(), byId);
+  if (!std::is_sorted(data.ways.begin(), data.ways.end(), byId))
+    std::stable_sort(data.ways.begin(), data.ways.end(), byId);
   if (!std::is_sorted(data.relations.begin(), data.relations.end(), byId))
     std::stable_sort(data.relations.begin(), data.relations.end(), byId);
   return data;

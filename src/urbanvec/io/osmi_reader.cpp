@@ -33,8 +33,8 @@ const char* attribute(const XML_Char** attrs, const char* name) {
 
 void fail(ParseState& s, const std::string& message) {
   if (s.error.empty())
-    s.error = "importance file '" + s.path + "' line " +
-              std::to_string(XML_GetCurrentLineNumber(s.parser)) + ": " + message;
+    s.error = "importance file '" + s.path + "' line " + std::to_string(XML_GetCurrentLineNumber(s.parser)) +
+              ": " + message;
   XML_StopParser(s.parser, XML_FALSE);
 }
 
@@ -65,12 +65,14 @@ void XMLCALL startElement(void* data, const XML_Char* name, const XML_Char** att
       if (!type || !ref) return fail(s, "<member> of place '" + place.id + "' needs both type and ref");
       const std::string t = type;
       if (t != "node" && t != "way" && t != "relation")
-        return fail(s, "<member> of place '" + place.id + "' has type '" + t + "'; expected node, way or relation");
+        return fail(
+            s, "<member> of place '" + place.id + "' has type '" + t + "'; expected node, way or relation");
       char* end = nullptr;
       errno = 0;
       const long long id = std::strtoll(ref, &end, 10);
       if (errno != 0 || end == ref || *end != '\0')
-        return fail(s, "<member> of place '" + place.id + "' has ref '" + std::string(ref) + "', not an OSM id");
+        return fail(s,
+                    "<member> of place '" + place.id + "' has ref '" + std::string(ref) + "', not an OSM id");
       place.members.push_back({t[0], static_cast<std::int64_t>(id)});
     } else if (element == "tag") {
       const char* k = attribute(attrs, "k");
@@ -97,7 +99,8 @@ const std::string* OsmiPlace::tag(const std::string& k) const {
 
 bool looksLikeOsmi(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == ".osmi") return true;
   std::ifstream in(path, std::ios::binary);
   std::string head(512, '\0');
@@ -108,7 +111,8 @@ bool looksLikeOsmi(const std::string& path) {
 
 OsmiFile readOsmiFile(const std::string& path) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw invalidInput("importance file '" + path + "' does not exist");
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw invalidInput("importance file '" + path + "' does not exist");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw invalidInput("importance file '" + path + "' cannot be opened");
   std::stringstream buffer;
@@ -131,7 +135,8 @@ OsmiFile readOsmiFile(const std::string& path) {
   }
   XML_ParserFree(state.parser);
   if (!message.empty()) throw invalidInput(message);
-  if (state.depth != 0 || (state.file.version.empty() && state.file.places.empty() && text.find("<osmi") == std::string::npos))
+  if (state.depth != 0 ||
+      (state.file.version.empty() && state.file.places.empty() && text.find("<osmi") == std::string::npos))
     throw invalidInput("importance file '" + path + "' has no <osmi> root element");
   return std::move(state.file);
 }

@@ -4,7 +4,8 @@
 namespace urbanvec::shrink {
 
 bool PointMapper::survives(const Vec2& p) const {
-  const size_t o = static_cast<size_t>(frame_.row(p.y)) * static_cast<size_t>(frame_.width) + static_cast<size_t>(frame_.col(p.x));
+  const size_t o = static_cast<size_t>(frame_.row(p.y)) * static_cast<size_t>(frame_.width) +
+                   static_cast<size_t>(frame_.col(p.x));
   return carve_.finalRow[o] >= 0;
 }
 
@@ -31,11 +32,20 @@ bool PointMapper::map(const Vec2& p, bool collapse, Vec2& out) const {
   const int fr = carve_.finalRow[static_cast<size_t>(s)], fc = carve_.finalCol[static_cast<size_t>(s)];
   out = {p.x - (sc - fc) * frame_.cell, p.y + (sr - fr) * frame_.cell};
   switch (side) {
-    case MergeSide::OntoLeft: out.x = frame_.x0 + (fc + 1) * frame_.cell; break;
-    case MergeSide::OntoRight: out.x = frame_.x0 + fc * frame_.cell; break;
-    case MergeSide::OntoAbove: out.y = frame_.yTop - (fr + 1) * frame_.cell; break;
-    case MergeSide::OntoBelow: out.y = frame_.yTop - fr * frame_.cell; break;
-    case MergeSide::None: break;
+    case MergeSide::OntoLeft:
+      out.x = frame_.x0 + (fc + 1) * frame_.cell;
+      break;
+    case MergeSide::OntoRight:
+      out.x = frame_.x0 + fc * frame_.cell;
+      break;
+    case MergeSide::OntoAbove:
+      out.y = frame_.yTop - (fr + 1) * frame_.cell;
+      break;
+    case MergeSide::OntoBelow:
+      out.y = frame_.yTop - fr * frame_.cell;
+      break;
+    case MergeSide::None:
+      break;
   }
   return true;
 }

@@ -34,10 +34,10 @@ struct City {
 
 /// An important place of the .osmi file (§B.1.2) with its members resolved.
 struct Place {
-  std::string id;           ///< the .osmi place id (or the importance layer's feature id)
+  std::string id;  ///< the .osmi place id (or the importance layer's feature id)
   std::string name;
-  std::int64_t osmId = 0;   ///< OSM id of its first member (0 when drawn by hand)
-  double appearW = 1.0;     ///< [0, 1], 1 = most important
+  std::int64_t osmId = 0;  ///< OSM id of its first member (0 when drawn by hand)
+  double appearW = 1.0;    ///< [0, 1], 1 = most important
   /// Streets that are members (by OSM way id): important directly (§B.4).
   std::vector<std::int64_t> streetIds;
   /// Non-street elements (buildings, squares, rivers, points): node sequences into City::nodes; one

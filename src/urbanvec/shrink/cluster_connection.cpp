@@ -15,7 +15,8 @@ struct UnionFind {
   std::vector<int> parent;
   explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
   int find(int a) {
-    while (parent[static_cast<size_t>(a)] != a) a = parent[static_cast<size_t>(a)] = parent[static_cast<size_t>(parent[static_cast<size_t>(a)])];
+    while (parent[static_cast<size_t>(a)] != a)
+      a = parent[static_cast<size_t>(a)] = parent[static_cast<size_t>(parent[static_cast<size_t>(a)])];
     return a;
   }
   void unite(int a, int b) {
@@ -26,7 +27,8 @@ struct UnionFind {
 
 void uniteWay(UnionFind& uf, const StreetGraph& g, const CityWay& way) {
   for (size_t i = 1; i < way.nodes.size(); ++i)
-    uf.unite(g.graphNode[static_cast<size_t>(way.nodes[i - 1])], g.graphNode[static_cast<size_t>(way.nodes[i])]);
+    uf.unite(g.graphNode[static_cast<size_t>(way.nodes[i - 1])],
+             g.graphNode[static_cast<size_t>(way.nodes[i])]);
 }
 
 }  // namespace
@@ -46,7 +48,8 @@ std::vector<char> connectClusters(const City& city, const StreetGraph& g, const 
   double minX = std::numeric_limits<double>::infinity(), minY = minX, maxX = -minX, maxY = -minX;
   for (size_t n = 0; n < g.graph.nodeCount(); ++n) {
     const Vec2 p = g.graph.node(static_cast<int>(n)).p;
-    minX = std::min(minX, p.x), maxX = std::max(maxX, p.x), minY = std::min(minY, p.y), maxY = std::max(maxY, p.y);
+    minX = std::min(minX, p.x), maxX = std::max(maxX, p.x), minY = std::min(minY, p.y),
+    maxY = std::max(maxY, p.y);
   }
   const Vec2 centre{(minX + maxX) / 2, (minY + maxY) / 2};
   struct Cluster {

@@ -13,13 +13,13 @@
 namespace urbanvec::shrink {
 
 struct ConnectionStats {
-  int clusters = 0;          ///< clusters of the selected streets (§C.6 flood fill)
-  int joined = 0;            ///< clusters joined to the ones before them by a path
-  int unreachable = 0;       ///< clusters no path reaches
-  int connectorWays = 0;     ///< streets added by the paths
-  int removedClusters = 0;   ///< clusters deleted (noImpClusters)
+  int clusters = 0;         ///< clusters of the selected streets (§C.6 flood fill)
+  int joined = 0;           ///< clusters joined to the ones before them by a path
+  int unreachable = 0;      ///< clusters no path reaches
+  int connectorWays = 0;    ///< streets added by the paths
+  int removedClusters = 0;  ///< clusters deleted (noImpClusters)
   int removedWays = 0;
-  int components = 0;        ///< components left
+  int components = 0;  ///< components left
 };
 
 /// Per street: 0 not in the skeleton, 1 selected, 2 added as a connector. Clusters are processed by

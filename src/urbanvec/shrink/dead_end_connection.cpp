@@ -10,7 +10,8 @@ namespace urbanvec::shrink {
 namespace {
 
 /// Distinct neighbours of node n over the edges `use` accepts.
-int neighbourCount(const PlanarGraph& graph, int n, const std::vector<char>& skeletonEdge, bool skeletonOnly) {
+int neighbourCount(const PlanarGraph& graph, int n, const std::vector<char>& skeletonEdge,
+                   bool skeletonOnly) {
   std::set<int> seen;
   for (int e : graph.node(n).edges)
     if (!skeletonOnly || skeletonEdge[static_cast<size_t>(e)]) seen.insert(graph.otherEnd(e, n));
@@ -19,15 +20,26 @@ int neighbourCount(const PlanarGraph& graph, int n, const std::vector<char>& ske
 
 }  // namespace
 
-std::vector<CityWay> connectDeadEnds(const City& city, const StreetGraph& g, const std::vector<char>& inSkeleton,
-                                     int mDegree, std::int64_t firstNewId, DeadEndStats* stats) {
+std::vector<CityWay> connectDeadEnds(const City& city, const StreetGraph& g,
+                                     const std::vector<char>& inSkeleton, int mDegree,
+                                     std::int64_t firstNewId, DeadEndStats* stats) {
   DeadEndStats local;
   const PlanarGraph& graph = g.graph;
   std::vector<char> skeletonEdge(graph.edgeCount(), 0);
+  // A segment is in the skeleton when any street along it is (two ways may share a segment).
+  std::set<std::pair<int, int>> skeletonPairs;
   for (size_t e = 0; e < graph.edgeCount(); ++e)
-    skeletonEdge[e] = inSkeleton[static_cast<size_t>(g.edgeWay[e])] ? 1 : 0;
+    if (inSkeleton[static_cast<size_t>(g.edgeWay[e])]) {
+      const PlanarGraph::Edge& edge = graph.edge(static_cast<int>(e));
+      skeletonPairs.insert({std::min(edge.a, edge.b), std::max(edge.a, edge.b)});
+    }
+  for (size_t e = 0; e < graph.edgeCount(); ++e) {
+    const PlanarGraph::Edge& edge = graph.edge(static_cast<int>(e));
+    skeletonEdge[e] = skeletonPairs.count({std::min(edge.a, edge.b), std::max(edge.a, edge.b)}) ? 1 : 0;
+  }
   std::vector<int> degree(graph.nodeCount(), 0);
-  for (size_t n = 0; n < graph.nodeCount(); ++n) degree[n] = neighbourCount(graph, static_cast<int>(n), skeletonEdge, true);
+  for (size_t n = 0; n < graph.nodeCount(); ++n)
+    degree[n] = neighbourCount(graph, static_cast<int>(n), skeletonEdge, true);
 
   std::vector<CityWay> added;
   std::int64_t nextId = firstNewId;

@@ -9,7 +9,7 @@
 namespace urbanvec::shrink {
 
 struct DeadEndStats {
-  int deadEnds = 0;   ///< skeleton dead ends that were not dead ends in the city
+  int deadEnds = 0;  ///< skeleton dead ends that were not dead ends in the city
   int connected = 0;
   int remaining = 0;  ///< no skeleton node within m segments
 };

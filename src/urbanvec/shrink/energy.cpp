@@ -17,7 +17,8 @@ void transform1d(const double* f, double* d, int n, std::vector<int>& v, std::ve
     if (f[q] == inf) continue;
     while (k >= 0) {
       const int p = v[static_cast<size_t>(k)];
-      const double s = ((f[q] + q * static_cast<double>(q)) - (f[p] + p * static_cast<double>(p))) / (2.0 * (q - p));
+      const double s =
+          ((f[q] + q * static_cast<double>(q)) - (f[p] + p * static_cast<double>(p))) / (2.0 * (q - p));
       if (s <= z[static_cast<size_t>(k)]) {
         --k;
         continue;
@@ -64,7 +65,8 @@ std::vector<double> squaredDistanceTransform(const std::vector<char>& feature, i
   }
   for (size_t r = 0; r < h; ++r) {  // rows
     transform1d(&grid[r * w], d.data(), width, v, z);
-    std::copy(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(w), grid.begin() + static_cast<std::ptrdiff_t>(r * w));
+    std::copy(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(w),
+              grid.begin() + static_cast<std::ptrdiff_t>(r * w));
   }
   return grid;
 }
@@ -81,7 +83,9 @@ std::vector<float> seamEnergy(const SkeletonRaster& raster, double grayDistBalan
   std::vector<float> energy(n);
   const double b = grayDistBalance;
   for (size_t i = 0; i < n; ++i) {
-    const double df = !std::isfinite(d2[i]) ? 0.0 : maxD > 0.0 ? 255.0 * (1.0 - std::sqrt(d2[i]) / maxD) : 255.0;
+    const double df = !std::isfinite(d2[i]) ? 0.0
+                      : maxD > 0.0          ? 255.0 * (1.0 - std::sqrt(d2[i]) / maxD)
+                                            : 255.0;
     energy[i] = raster.freezeOwner[i] != kNotFrozen ? std::numeric_limits<float>::infinity()
                                                     : static_cast<float>(b * raster.ink[i] + (1.0 - b) * df);
   }

@@ -30,7 +30,8 @@ std::vector<StreetImportance> findImportantStreets(const City& city, const std::
   for (size_t p = 0; p < places.size(); ++p)
     for (std::int64_t id : places[p].streetIds) {
       auto range = byId.equal_range(id);
-      for (auto it = range.first; it != range.second; ++it) mark(it->second, static_cast<int>(p), false, local.direct);
+      for (auto it = range.first; it != range.second; ++it)
+        mark(it->second, static_cast<int>(p), false, local.direct);
     }
   const SegmentGrid grid(city.nodes, city.streets, options.proximityThreshold);
   for (size_t p = 0; p < places.size(); ++p) {
@@ -52,7 +53,8 @@ std::vector<StreetImportance> findImportantStreets(const City& city, const std::
       for (int n : place.boundingRing) {
         const Vec2 q = city.nodes[static_cast<size_t>(n)].p;
         ring.push_back(q);
-        minX = std::min(minX, q.x), maxX = std::max(maxX, q.x), minY = std::min(minY, q.y), maxY = std::max(maxY, q.y);
+        minX = std::min(minX, q.x), maxX = std::max(maxX, q.x), minY = std::min(minY, q.y),
+        maxY = std::max(maxY, q.y);
       }
       for (size_t w = 0; w < city.streets.size(); ++w)
         for (int n : city.streets[w].nodes) {

@@ -18,9 +18,9 @@ struct StreetImportance {
 };
 
 struct IndirectStats {
-  int direct = 0;            ///< streets named as members
-  int nearest = 0;           ///< streets added as a landmark's nearest street
-  int insideBounding = 0;    ///< streets added for a node inside a bounding area
+  int direct = 0;               ///< streets named as members
+  int nearest = 0;              ///< streets added as a landmark's nearest street
+  int insideBounding = 0;       ///< streets added for a node inside a bounding area
   int placesWithoutStreet = 0;  ///< non-street places with no street within the threshold
 };
 

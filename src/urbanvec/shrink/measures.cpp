@@ -12,7 +12,9 @@
 namespace urbanvec::shrink {
 namespace {
 
-bool finite(const Vec2& p) { return std::isfinite(p.x) && std::isfinite(p.y); }
+bool finite(const Vec2& p) {
+  return std::isfinite(p.x) && std::isfinite(p.y);
+}
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0.0;
@@ -58,10 +60,13 @@ int componentCount(const std::map<int, std::vector<int>>& adj) {
   return count;
 }
 
-double orient(const Vec2& a, const Vec2& b, const Vec2& c) { return cross(b - a, c - a); }
+double orient(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return cross(b - a, c - a);
+}
 
 /// Way pairs (i <= j) with two segments crossing properly (not at a shared node).
-std::set<std::pair<int, int>> crossingPairs(const std::vector<std::vector<int>>& ways, const std::vector<Vec2>& pos) {
+std::set<std::pair<int, int>> crossingPairs(const std::vector<std::vector<int>>& ways,
+                                            const std::vector<Vec2>& pos) {
   struct Seg {
     int way, a, b;
   };
@@ -97,7 +102,8 @@ std::set<std::pair<int, int>> crossingPairs(const std::vector<std::vector<int>>&
         if (s.a == t.a || s.a == t.b || s.b == t.a || s.b == t.b) continue;
         const Vec2 p1 = pos[static_cast<size_t>(s.a)], p2 = pos[static_cast<size_t>(s.b)];
         const Vec2 q1 = pos[static_cast<size_t>(t.a)], q2 = pos[static_cast<size_t>(t.b)];
-        const double d1 = orient(p1, p2, q1), d2 = orient(p1, p2, q2), d3 = orient(q1, q2, p1), d4 = orient(q1, q2, p2);
+        const double d1 = orient(p1, p2, q1), d2 = orient(p1, p2, q2), d3 = orient(q1, q2, p1),
+                     d4 = orient(q1, q2, p2);
         if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0)))
           pairs.insert({std::min(s.way, t.way), std::max(s.way, t.way)});
       }
@@ -190,7 +196,8 @@ ShrinkMeasures measureShrink(const MeasureInput& in) {
     auto add = [&](int n) {
       const Vec2 p = pos[static_cast<size_t>(n)];
       if (!finite(p)) return;
-      minX = std::min(minX, p.x), maxX = std::max(maxX, p.x), minY = std::min(minY, p.y), maxY = std::max(maxY, p.y);
+      minX = std::min(minX, p.x), maxX = std::max(maxX, p.x), minY = std::min(minY, p.y),
+      maxY = std::max(maxY, p.y);
     };
     for (const auto& way : useAfter ? in.waysAfter : in.waysBefore)
       for (int n : way) add(n);

@@ -21,11 +21,11 @@ struct MeasureInput {
 };
 
 struct ShrinkMeasures {
-  double areaKept = 1.0;  ///< bounding-box area of the shrunk skeleton / the original's
+  double areaKept = 1.0;              ///< bounding-box area of the shrunk skeleton / the original's
   double landmarkMaxDeviation = 0.0;  ///< metres: worst node offset from its element's translation
   int landmarkPairs = 0;
-  int orderViolationsX = 0;  ///< pairs whose left-right order flipped
-  int orderViolationsY = 0;  ///< pairs whose above-below order flipped
+  int orderViolationsX = 0;          ///< pairs whose left-right order flipped
+  int orderViolationsY = 0;          ///< pairs whose above-below order flipped
   double bearingChangeMedian = 0.0;  ///< degrees
   double distanceRatioMin = 1.0, distanceRatioMedian = 1.0, distanceRatioMax = 1.0;
   int crossingsBefore = 0, crossingsAfter = 0, newCrossings = 0;  ///< way pairs properly crossing
@@ -33,8 +33,10 @@ struct ShrinkMeasures {
   int componentsBefore = 0, componentsAfter = 0;
   int deadEndsBefore = 0, newDeadEnds = 0;
   double entropyBefore = 0.0, entropyAfter = 0.0;  ///< orientation entropy, nats (36 bins, length-weighted)
-  double rightAngleShareBefore = 0.0, rightAngleShareAfter = 0.0;  ///< intersection angles in [80, 100] degrees
-  double angleDeviationBefore = 0.0, angleDeviationAfter = 0.0;  ///< median |angle - 90| at intersections, degrees
+  double rightAngleShareBefore = 0.0,
+         rightAngleShareAfter = 0.0;  ///< intersection angles in [80, 100] degrees
+  double angleDeviationBefore = 0.0,
+         angleDeviationAfter = 0.0;  ///< median |angle - 90| at intersections, degrees
   int blocksBefore = 0, blocksAfter = 0;
   double meanBlockAreaBefore = 0.0, meanBlockAreaAfter = 0.0;  ///< m²
 };

@@ -28,7 +28,8 @@ RasterFrame frameFor(double minX, double minY, double maxX, double maxY, int ima
 
 namespace {
 
-void drawSegment(const RasterFrame& f, const Vec2& a, const Vec2& b, const std::function<void(int, int)>& put) {
+void drawSegment(const RasterFrame& f, const Vec2& a, const Vec2& b,
+                 const std::function<void(int, int)>& put) {
   const double steps = std::ceil(2.0 * distance(a, b) / f.cell) + 1.0;
   const int n = static_cast<int>(std::min(steps, 1e7));
   int lastR = -1, lastC = -1;
@@ -79,12 +80,16 @@ SkeletonRaster rasteriseSkeleton(const RasterFrame& frame, const std::vector<Ink
       v = std::max(v, line.ink);
     };
     if (line.points.size() == 1) put(frame.row(line.points[0].y), frame.col(line.points[0].x));
-    for (size_t i = 1; i < line.points.size(); ++i) drawSegment(frame, line.points[i - 1], line.points[i], put);
+    for (size_t i = 1; i < line.points.size(); ++i)
+      drawSegment(frame, line.points[i - 1], line.points[i], put);
   }
   for (const LandmarkShape& shape : landmarks) {
     if (shape.points.empty()) continue;
-    auto put = [&](int r, int c) { raster.ink[static_cast<size_t>(r) * w + static_cast<size_t>(c)] = 255.0f; };
-    for (size_t i = 1; i < shape.points.size(); ++i) drawSegment(frame, shape.points[i - 1], shape.points[i], put);
+    auto put = [&](int r, int c) {
+      raster.ink[static_cast<size_t>(r) * w + static_cast<size_t>(c)] = 255.0f;
+    };
+    for (size_t i = 1; i < shape.points.size(); ++i)
+      drawSegment(frame, shape.points[i - 1], shape.points[i], put);
     const bool closed = shape.points.size() >= 4 && shape.points.front() == shape.points.back();
     if (closed) fillRing(frame, shape.points, put);
     int r0 = frame.height, r1 = -1, c0 = frame.width, c1 = -1;
@@ -92,16 +97,19 @@ SkeletonRaster rasteriseSkeleton(const RasterFrame& frame, const std::vector<Ink
       const int r = frame.row(p.y), c = frame.col(p.x);
       put(r, c);
       r0 = std::min(r0, r), r1 = std::max(r1, r), c0 = std::min(c0, c), c1 = std::max(c1, c);
-      if (freeze == LandmarkFreeze::Nodes) raster.freezeOwner[static_cast<size_t>(r) * w + static_cast<size_t>(c)] = shape.place;
+      if (freeze == LandmarkFreeze::Nodes)
+        raster.freezeOwner[static_cast<size_t>(r) * w + static_cast<size_t>(c)] = shape.place;
     }
     // The pixel bounding box: no seam can pass between two pixels of it, so every node of the element
     // moves by the same number of pixels (a pure translation).
     if (freeze == LandmarkFreeze::BoundingBox)
       for (int r = r0; r <= r1; ++r)
-        for (int c = c0; c <= c1; ++c) raster.freezeOwner[static_cast<size_t>(r) * w + static_cast<size_t>(c)] = shape.place;
+        for (int c = c0; c <= c1; ++c)
+          raster.freezeOwner[static_cast<size_t>(r) * w + static_cast<size_t>(c)] = shape.place;
   }
   for (const Vec2& p : frozenStreetNodes) {
-    int& owner = raster.freezeOwner[static_cast<size_t>(frame.row(p.y)) * w + static_cast<size_t>(frame.col(p.x))];
+    int& owner =
+        raster.freezeOwner[static_cast<size_t>(frame.row(p.y)) * w + static_cast<size_t>(frame.col(p.x))];
     if (owner == kNotFrozen) owner = kFrozenStreetNode;
   }
   return raster;

@@ -10,7 +10,8 @@
 namespace urbanvec::shrink {
 
 /// Dominant bearing of a set of segments in degrees [0, 90): the mode of their directions modulo 90,
-/// weighted by length, on a 1-degree histogram smoothed over +-2 degrees (ties: the smaller angle).
+/// weighted by length, on a 1-degree histogram smoothed over +-2 degrees (ties: the smaller angle),
+/// refined to the weighted mean direction within 3 degrees of it.
 double dominantBearing(const std::vector<std::pair<Vec2, Vec2>>& segments);
 
 /// Rotates p counter-clockwise by `degrees` about `centre` (RotateCity).

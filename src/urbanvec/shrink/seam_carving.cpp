@@ -17,57 +17,72 @@ struct Work {
   int rows = 0, cols = 0;
   size_t stride = 0;
   bool transposed = false;
-  std::vector<float> prev, cur;            ///< two rows of cumulative energy
-  std::vector<std::int8_t> back;          ///< predecessor offset (-1, 0, 1) per pixel
+  std::vector<float> cumulative;  ///< M of the dynamic programme, rows x cols
   std::vector<int> seam;
+
+  std::vector<float> energyScratch;
+  std::vector<std::int32_t> indexScratch;
 
   void transpose() {
     const size_t newStride = static_cast<size_t>(rows);
-    std::vector<float> e(static_cast<size_t>(cols) * newStride);
-    std::vector<std::int32_t> idx(e.size());
-    constexpr int B = 32;
+    const size_t need = static_cast<size_t>(cols) * newStride;
+    if (energyScratch.size() < need) energyScratch.resize(need), indexScratch.resize(need);
+    constexpr int B = 64;
     for (int r0 = 0; r0 < rows; r0 += B)
-      for (int c0 = 0; c0 < cols; c0 += B)
-        for (int r = r0; r < std::min(rows, r0 + B); ++r)
-          for (int c = c0; c < std::min(cols, c0 + B); ++c) {
-            e[static_cast<size_t>(c) * newStride + static_cast<size_t>(r)] = energy[static_cast<size_t>(r) * stride + static_cast<size_t>(c)];
-            idx[static_cast<size_t>(c) * newStride + static_cast<size_t>(r)] = index[static_cast<size_t>(r) * stride + static_cast<size_t>(c)];
+      for (int c0 = 0; c0 < cols; c0 += B) {
+        const int r1 = std::min(rows, r0 + B), c1 = std::min(cols, c0 + B);
+        for (int r = r0; r < r1; ++r) {
+          const float* e = &energy[static_cast<size_t>(r) * stride];
+          const std::int32_t* x = &index[static_cast<size_t>(r) * stride];
+          float* te = &energyScratch[static_cast<size_t>(r)];
+          std::int32_t* tx = &indexScratch[static_cast<size_t>(r)];
+          for (int c = c0; c < c1; ++c) {
+            te[static_cast<size_t>(c) * newStride] = e[c];
+            tx[static_cast<size_t>(c) * newStride] = x[c];
           }
-    energy.swap(e);
-    index.swap(idx);
+        }
+      }
+    energy.swap(energyScratch);
+    index.swap(indexScratch);
     std::swap(rows, cols);
     stride = newStride;
     transposed = !transposed;
   }
 
-  /// Minimal vertical seam of the current buffers; false when every seam crosses +infinity.
+  /// Minimal vertical seam of the current buffers; false when every seam crosses +infinity. The
+  /// cumulative energy M is kept for every pixel (a branch-free min of three, which vectorises) and the
+  /// seam is traced back by comparing the three cells above.
   bool findSeam() {
     const size_t w = static_cast<size_t>(cols);
-    prev.assign(energy.begin(), energy.begin() + static_cast<std::ptrdiff_t>(w));
-    cur.resize(w);
-    back.resize(static_cast<size_t>(rows) * w);
+    cumulative.resize(static_cast<size_t>(rows) * w);
+    std::copy(energy.begin(), energy.begin() + static_cast<std::ptrdiff_t>(w), cumulative.begin());
     for (int r = 1; r < rows; ++r) {
       const float* e = &energy[static_cast<size_t>(r) * stride];
-      std::int8_t* b = &back[static_cast<size_t>(r) * w];
-      for (size_t c = 0; c < w; ++c) {
-        float best = prev[c];
-        std::int8_t step = 0;
-        if (c > 0 && prev[c - 1] < best) best = prev[c - 1], step = -1;
-        if (c + 1 < w && prev[c + 1] < best) best = prev[c + 1], step = 1;
-        cur[c] = e[c] + best;
-        b[c] = step;
+      const float* p = &cumulative[static_cast<size_t>(r - 1) * w];
+      float* q = &cumulative[static_cast<size_t>(r) * w];
+      if (w == 1) {
+        q[0] = e[0] + p[0];
+        continue;
       }
-      prev.swap(cur);
+      q[0] = e[0] + std::min(p[0], p[1]);
+      for (size_t c = 1; c + 1 < w; ++c) q[c] = e[c] + std::min(std::min(p[c - 1], p[c]), p[c + 1]);
+      q[w - 1] = e[w - 1] + std::min(p[w - 2], p[w - 1]);
     }
+    const float* last = &cumulative[static_cast<size_t>(rows - 1) * w];
     size_t end = 0;
     for (size_t c = 1; c < w; ++c)
-      if (prev[c] < prev[end]) end = c;
-    if (!std::isfinite(prev[end])) return false;
+      if (last[c] < last[end]) end = c;
+    if (!std::isfinite(last[end])) return false;
     seam.resize(static_cast<size_t>(rows));
-    int c = static_cast<int>(end);
+    size_t c = end;
     for (int r = rows - 1; r >= 0; --r) {
-      seam[static_cast<size_t>(r)] = c;
-      if (r > 0) c += back[static_cast<size_t>(r) * w + static_cast<size_t>(c)];
+      seam[static_cast<size_t>(r)] = static_cast<int>(c);
+      if (r == 0) break;
+      const float* p = &cumulative[static_cast<size_t>(r - 1) * w];
+      size_t next = c;  // straight up first, then left, then right
+      if (c > 0 && p[c - 1] < p[next]) next = c - 1;
+      if (c + 1 < w && p[c + 1] < p[next]) next = c + 1;
+      c = next;
     }
     return true;
   }
@@ -137,8 +152,10 @@ CarveResult carveSeams(const std::vector<float>& energy, int width, int height, 
     }
     --work.cols;
     result.seams.push_back(std::move(seam));
-    if (doVertical) --leftV, ++result.verticalRemoved;
-    else --leftH, ++result.horizontalRemoved;
+    if (doVertical)
+      --leftV, ++result.verticalRemoved;
+    else
+      --leftH, ++result.horizontalRemoved;
     ticker.tick();
   }
   if (work.transposed) work.transpose();
@@ -149,7 +166,8 @@ CarveResult carveSeams(const std::vector<float>& energy, int width, int height, 
   result.finalCol.assign(n, -1);
   for (int r = 0; r < work.rows; ++r)
     for (int c = 0; c < work.cols; ++c) {
-      const size_t o = static_cast<size_t>(work.index[static_cast<size_t>(r) * work.stride + static_cast<size_t>(c)]);
+      const size_t o =
+          static_cast<size_t>(work.index[static_cast<size_t>(r) * work.stride + static_cast<size_t>(c)]);
       result.finalRow[o] = r;
       result.finalCol[o] = c;
     }

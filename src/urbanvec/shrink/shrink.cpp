@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <set>
 
@@ -29,10 +30,14 @@ namespace urbanvec::shrink {
 
 const char* wayKindName(WayKind kind) {
   switch (kind) {
-    case WayKind::Important: return "important";
-    case WayKind::Selected: return "selected";
-    case WayKind::Connector: return "connector";
-    case WayKind::DeadEndConnector: return "dead_end_connector";
+    case WayKind::Important:
+      return "important";
+    case WayKind::Selected:
+      return "selected";
+    case WayKind::Connector:
+      return "connector";
+    case WayKind::DeadEndConnector:
+      return "dead_end_connector";
   }
   return "selected";
 }
@@ -43,16 +48,21 @@ double ShrinkReport::value(const std::string& name) const {
   return std::numeric_limits<double>::quiet_NaN();
 }
 
+namespace {
+std::string numberText(double v);
+}
+
 void validate(const ShrinkOptions& o) {
   auto unit = [](double v, const char* name) {
     if (!(v >= 0.0 && v <= 1.0))
-      throw invalidOption(std::string(name) + " must be within 0..1, not " + std::to_string(v));
+      throw invalidOption(std::string(name) + " must be within 0..1, not " + numberText(v));
   };
   unit(o.selection.shrinkFactor, "shF (-shf)");
   unit(o.connection.impDistBalance, "impDistBalance (-imp-dist-balance)");
   unit(o.carving.grayDistBalance, "grayDistBalance (-gray-dist-balance)");
   if (o.carving.imageSize <= 1)
-    throw invalidOption("imageSize (-image-size) must be at least 2 pixels, not " + std::to_string(o.carving.imageSize));
+    throw invalidOption("imageSize (-image-size) must be at least 2 pixels, not " +
+                        std::to_string(o.carving.imageSize));
   if (o.carving.verticalSeams < 0 || o.carving.horizontalSeams < 0)
     throw invalidOption("the seam counts (-seams) must not be negative");
   if (o.connection.mDegree < 0) throw invalidOption("m-degree (-m-degree) must not be negative");
@@ -82,6 +92,12 @@ class Timer {
 
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+std::string numberText(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.10g", v);
+  return buffer;
+}
+
 std::string seamRange(int from, int to) {
   return from == to ? std::to_string(from) : std::to_string(from) + "-" + std::to_string(to);
 }
@@ -103,7 +119,8 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
   if (city.streets.empty())
     throw invalidInput(cleaning.waysIn == 0
                            ? "the city has no street: no way with a highway tag"
-                           : "the city has no street left after cleaning: all " + std::to_string(cleaning.waysIn) +
+                           : "the city has no street left after cleaning: all " +
+                                 std::to_string(cleaning.waysIn) +
                                  " highway ways lie outside the download bounds or have fewer than 2 nodes");
   put("streets_in", cleaning.waysIn);
   put("streets_clean", cleaning.waysOut);
@@ -113,7 +130,8 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
   // step1 (§B.3) and step2 (§B.4).
   const StreetGraph graph = buildStreetGraph(city.nodes, city.streets);
   IndirectStats indirect;
-  const std::vector<StreetImportance> importance = findImportantStreets(city, places, options.selection, &indirect);
+  const std::vector<StreetImportance> importance =
+      findImportantStreets(city, places, options.selection, &indirect);
   timer.lap("step1");
   const Selection selection = selectStreets(city, graph, importance, options.selection);
   timer.lap("step2");
@@ -130,8 +148,7 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
 
   // step3&4 (§B.5).
   ConnectionStats connection;
-  std::vector<char> in =
-      connectClusters(city, graph, selection, importance, options.connection, &connection);
+  std::vector<char> in = connectClusters(city, graph, selection, importance, options.connection, &connection);
   timer.lap("step3&4");
   put("clusters", connection.clusters);
   put("clusters_joined", connection.joined);
@@ -155,12 +172,15 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
     if (!in[w]) continue;
     SkeletonWay s{city.streets[w], static_cast<int>(w), selection.scores[w].impW, WayKind::Selected,
                   importance[w].place};
-    if (importance[w].important) s.kind = WayKind::Important;
-    else if (in[w] == 2) s.kind = WayKind::Connector;
+    if (importance[w].important)
+      s.kind = WayKind::Important;
+    else if (in[w] == 2)
+      s.kind = WayKind::Connector;
     skeleton.ways.push_back(std::move(s));
   }
   for (const CityWay& way : connectors)
-    skeleton.ways.push_back({way, -1, streetTypeWeight(way.highway, options.selection), WayKind::DeadEndConnector, -1});
+    skeleton.ways.push_back(
+        {way, -1, streetTypeWeight(way.highway, options.selection), WayKind::DeadEndConnector, -1});
   for (size_t p = 0; p < places.size(); ++p)
     if (!places[p].shapes.empty()) skeleton.places.push_back(static_cast<int>(p));
   put("skeleton_streets", static_cast<double>(skeleton.ways.size()));
@@ -207,7 +227,8 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
   for (size_t n = 0; n < nNodes; ++n)
     if (used[n]) {
       const Vec2 p = city.nodes[n].p;
-      minX = std::min(minX, p.x), maxX = std::max(maxX, p.x), minY = std::min(minY, p.y), maxY = std::max(maxY, p.y);
+      minX = std::min(minX, p.x), maxX = std::max(maxX, p.x), minY = std::min(minY, p.y),
+      maxY = std::max(maxY, p.y);
     }
   const Vec2 centre{(minX + maxX) / 2, (minY + maxY) / 2};
   double rotation = options.post.rotationDegrees;
@@ -215,13 +236,15 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
     std::vector<std::pair<Vec2, Vec2>> segments;
     for (const SkeletonWay& s : skeleton.ways)
       for (size_t i = 1; i < s.way.nodes.size(); ++i)
-        segments.push_back({city.nodes[static_cast<size_t>(s.way.nodes[i - 1])].p, city.nodes[static_cast<size_t>(s.way.nodes[i])].p});
+        segments.push_back({city.nodes[static_cast<size_t>(s.way.nodes[i - 1])].p,
+                            city.nodes[static_cast<size_t>(s.way.nodes[i])].p});
     const double bearing = dominantBearing(segments);
     rotation = -(bearing > 45.0 ? bearing - 90.0 : bearing);
   }
   put("rotation_degrees", rotation);
   std::vector<Vec2> pos(nNodes);
-  for (size_t n = 0; n < nNodes; ++n) pos[n] = rotation != 0.0 ? rotatePoint(city.nodes[n].p, centre, rotation) : city.nodes[n].p;
+  for (size_t n = 0; n < nNodes; ++n)
+    pos[n] = rotation != 0.0 ? rotatePoint(city.nodes[n].p, centre, rotation) : city.nodes[n].p;
   auto unrotate = [&](const Vec2& p) { return rotation != 0.0 ? rotatePoint(p, centre, -rotation) : p; };
 
   // step7 (§B.8).
@@ -276,9 +299,9 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
   timer.lap("step8Pre");
 
   // step8SC (§B.10).
-  const CarveResult carve = carveSeams(energy, frame.width, frame.height, options.carving.verticalSeams,
-                                       options.carving.horizontalSeams, options.carving.order,
-                                       subProgress(progress, 0.25, 0.85));
+  const CarveResult carve =
+      carveSeams(energy, frame.width, frame.height, options.carving.verticalSeams,
+                 options.carving.horizontalSeams, options.carving.order, subProgress(progress, 0.25, 0.85));
   timer.lap("step8SC");
   put("seams_vertical_requested", options.carving.verticalSeams);
   put("seams_horizontal_requested", options.carving.horizontalSeams);
@@ -297,18 +320,22 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
             " is frozen from edge to edge";
       std::set<int> owners;
       for (int k = 0; k < (vertical ? frame.width : frame.height); ++k) {
-        const size_t px = vertical ? static_cast<size_t>(line) * static_cast<size_t>(frame.width) + static_cast<size_t>(k)
-                                   : static_cast<size_t>(k) * static_cast<size_t>(frame.width) + static_cast<size_t>(line);
+        const size_t px =
+            vertical ? static_cast<size_t>(line) * static_cast<size_t>(frame.width) + static_cast<size_t>(k)
+                     : static_cast<size_t>(k) * static_cast<size_t>(frame.width) + static_cast<size_t>(line);
         (void)owner;
         owners.insert(raster.freezeOwner[px]);
       }
       std::string names;
       for (int o : owners)
-        if (o >= 0) names += (names.empty() ? "" : ", ") + std::string("'") +
-                             (places[static_cast<size_t>(o)].name.empty() ? places[static_cast<size_t>(o)].id
-                                                                           : places[static_cast<size_t>(o)].name) + "'";
-      why += names.empty() ? " by street intersections" : " by the landmark" + std::string(owners.size() > 2 ? "s " : " ") +
-                                                              names + (owners.count(kFrozenStreetNode) ? " and street intersections" : "");
+        if (o >= 0)
+          names += (names.empty() ? "" : ", ") + std::string("'") +
+                   (places[static_cast<size_t>(o)].name.empty() ? places[static_cast<size_t>(o)].id
+                                                                : places[static_cast<size_t>(o)].name) +
+                   "'";
+      why += names.empty() ? " by street intersections"
+                           : " by the landmark" + std::string(owners.size() > 2 ? "s " : " ") + names +
+                                 (owners.count(kFrozenStreetNode) ? " and street intersections" : "");
     } else {
       why = "every path across the image crosses a frozen pixel (landmarks and street intersections)";
     }
@@ -326,8 +353,10 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
   for (size_t n = 0; n < nNodes; ++n) {
     if (!skeletonNode[n] && !pinned[n]) continue;
     Vec2 q;
-    if (mapper.map(pos[n], options.carving.keepCarvedNodes || pinned[n], q)) after[n] = unrotate(q);
-    else ++dropped;
+    if (mapper.map(pos[n], options.carving.keepCarvedNodes || pinned[n], q))
+      after[n] = unrotate(q);
+    else
+      ++dropped;
   }
   put("nodes_dropped", dropped);
   std::vector<Vec2> before(nNodes);
@@ -344,7 +373,8 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
     const SkeletonWay& s = skeleton.ways[w];
     std::vector<int> kept;
     for (int n : s.way.nodes)
-      if (std::isfinite(after[static_cast<size_t>(n)].x) && (kept.empty() || kept.back() != n)) kept.push_back(n);
+      if (std::isfinite(after[static_cast<size_t>(n)].x) && (kept.empty() || kept.back() != n))
+        kept.push_back(n);
     waysAfter.push_back(kept);
     if (kept.size() < 2) {
       ++lostWays;
@@ -359,12 +389,19 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
     const Place& place = places[static_cast<size_t>(p)];
     for (size_t k = 0; k < place.shapes.size(); ++k) {
       const auto& shape = place.shapes[k];
-      ShrunkPlace out{place.id, k < place.shapeIds.size() ? place.shapeIds[k] : place.osmId, place.name, place.appearW, {}};
+      ShrunkPlace out{place.id,
+                      k < place.shapeIds.size() ? place.shapeIds[k] : place.osmId,
+                      place.name,
+                      place.appearW,
+                      {}};
       LineString line;
       for (int n : shape) line.push_back(after[static_cast<size_t>(n)]);
-      if (line.size() == 1) out.geometry = line[0];
-      else if (line.size() >= 4 && shape.front() == shape.back()) out.geometry = Polygon{line, {}};
-      else out.geometry = line;
+      if (line.size() == 1)
+        out.geometry = line[0];
+      else if (line.size() >= 4 && shape.front() == shape.back())
+        out.geometry = Polygon{line, {}};
+      else
+        out.geometry = line;
       result.places.push_back(std::move(out));
     }
   }
@@ -396,7 +433,8 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
   mi.after = after;
   for (int p : skeleton.places) mi.landmarks.push_back(places[static_cast<size_t>(p)].shapes);
   const ShrinkMeasures& m = result.measures = measureShrink(mi);
-  const double ideal = static_cast<double>(carve.width) * carve.height / (static_cast<double>(frame.width) * frame.height);
+  const double ideal =
+      static_cast<double>(carve.width) * carve.height / (static_cast<double>(frame.width) * frame.height);
   put("area_ideal", ideal);
   put("area_kept", m.areaKept);
   put("landmark_max_deviation", m.landmarkMaxDeviation);

@@ -41,7 +41,7 @@ struct SeamLine {
 /// Named figures of a run (counts per step, carving, and the measures), in a stable order.
 struct ShrinkReport {
   std::vector<std::pair<std::string, double>> values;
-  std::vector<std::string> notes;  ///< why seams could not be removed, and similar remarks
+  std::vector<std::string> notes;               ///< why seams could not be removed, and similar remarks
   double value(const std::string& name) const;  ///< NaN when absent
 };
 
@@ -63,6 +63,7 @@ struct ShrinkResult {
 
 /// Steps 0-8 of §B (B.2-B.11) and the measures. Throws InvalidInput when the city has no street,
 /// InvalidOption for out-of-range options or more seams than the image has pixels minus one.
-ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, const Progress& progress = {});
+ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options,
+                        const Progress& progress = {});
 
 }  // namespace urbanvec::shrink

@@ -17,11 +17,11 @@ enum class WayKind {
 const char* wayKindName(WayKind kind);
 
 struct SkeletonWay {
-  CityWay way;       ///< for a dead-end connector: a brand-new negative id (§B.6)
-  int street = -1;   ///< index into City::streets, -1 for a new way
+  CityWay way;      ///< for a dead-end connector: a brand-new negative id (§B.6)
+  int street = -1;  ///< index into City::streets, -1 for a new way
   double impW = 0.0;
   WayKind kind = WayKind::Selected;
-  int place = -1;    ///< the place that made it important, -1 for none
+  int place = -1;  ///< the place that made it important, -1 for none
 };
 
 struct Skeleton {

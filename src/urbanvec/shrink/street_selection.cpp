@@ -25,7 +25,9 @@ Selection selectStreets(const City& city, const StreetGraph& graph,
     StreetScore& s = sel.scores[w];
     const std::vector<int>& ns = city.streets[w].nodes;
     for (size_t i = 0; i < ns.size(); ++i) {
-      if (i > 0) s.length += distance(city.nodes[static_cast<size_t>(ns[i - 1])].p, city.nodes[static_cast<size_t>(ns[i])].p);
+      if (i > 0)
+        s.length +=
+            distance(city.nodes[static_cast<size_t>(ns[i - 1])].p, city.nodes[static_cast<size_t>(ns[i])].p);
       const size_t node = static_cast<size_t>(ns[i]);
       if (seen[node] == static_cast<int>(w)) continue;
       seen[node] = static_cast<int>(w);
@@ -43,7 +45,8 @@ Selection selectStreets(const City& city, const StreetGraph& graph,
     } else {
       s.impW = streetTypeWeight(city.streets[w].highway, options);
       if (maxIntersections > 0) s.impW += options.intersectionFactor * s.intersections / maxIntersections;
-      if (maxLength > minLength) s.impW += options.lengthFactor * (s.length - minLength) / (maxLength - minLength);
+      if (maxLength > minLength)
+        s.impW += options.lengthFactor * (s.length - minLength) / (maxLength - minLength);
     }
     s.impD = s.length > 0.0 ? s.impW / s.length : s.impW;
   }

@@ -12,9 +12,9 @@
 namespace urbanvec::shrink {
 
 struct StreetScore {
-  double impW = 0.0;    ///< [0.05, 1]
-  double length = 0.0;  ///< metres
-  double impD = 0.0;    ///< impW / length, per metre
+  double impW = 0.0;      ///< [0.05, 1]
+  double length = 0.0;    ///< metres
+  double impD = 0.0;      ///< impW / length, per metre
   int intersections = 0;  ///< nInt: nodes shared with another street
 };
 
@@ -22,7 +22,7 @@ struct Selection {
   std::vector<StreetScore> scores;  ///< per street
   std::vector<char> selected;       ///< per street
   int selectedCount = 0;
-  int importantCount = 0;          ///< streets with a place weight
+  int importantCount = 0;  ///< streets with a place weight
   int importantSelected = 0;
 };
 
