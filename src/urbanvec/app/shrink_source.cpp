@@ -4,6 +4,7 @@
 #include <ogr_spatialref.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
@@ -63,6 +64,12 @@ struct Builder {
     return out;
   }
 };
+
+std::string numberText(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.10g", v);
+  return buffer;
+}
 
 double unitValue(const std::string& text, bool& ok) {
   char* end = nullptr;
@@ -232,8 +239,7 @@ void readImportanceLayers(Builder& b, const std::string& path, const ShrinkSourc
         throw invalidInput(where + ": " + options.importanceField + " is empty");
       }
       if (!(w >= 0.0 && w <= 1.0))
-        throw invalidInput(where + ": " + options.importanceField + " " + std::to_string(w) +
-                           " is outside 0..1");
+        throw invalidInput(where + ": " + options.importanceField + " " + numberText(w) + " is outside 0..1");
       Place place;
       place.id = name + ":" + std::to_string(f + 1);
       place.appearW = w;

@@ -143,7 +143,7 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
     result.warnings.push_back(std::to_string(indirect.placesWithoutStreet) + " place" +
                               (indirect.placesWithoutStreet == 1 ? " has" : "s have") +
                               " no street within proxStrThreshold (" +
-                              std::to_string(options.selection.proximityThreshold) + " m)");
+                              numberText(options.selection.proximityThreshold) + " m)");
   reportProgress(progress, 0.05, "selection");
 
   // step3&4 (§B.5).

@@ -59,7 +59,7 @@ struct CarvingOptions {
   /// imageSizeReduction (§B.12): vertical seams (remove columns) and horizontal seams (remove rows).
   int verticalSeams = 100;
   int horizontalSeams = 100;
-  SeamOrder order = SeamOrder::Interleaved;
+  SeamOrder order = SeamOrder::Blocks;
   /// Which landmark pixels get +infinite energy (§B.9 item 6; §B.14 "freeze whole important areas").
   LandmarkFreeze landmarkFreeze = LandmarkFreeze::BoundingBox;
   /// Freeze the pixel of every skeleton street node, not only intersections and ends (§B.11: the
