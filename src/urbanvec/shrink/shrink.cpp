@@ -210,6 +210,23 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
     skeletonNode[n] = 1;
     frozen[n] = options.carving.freezeAllStreetNodes || wayUse[n] >= 2 || neighbours[n].size() != 2;
   }
+  // A run of unfrozen nodes that closes a loop (both ends the same node) or doubles another run
+  // between the same two frozen nodes would collapse when a seam deletes its nodes, taking a neighbour
+  // from an intersection: its middle node is frozen too, so the skeleton's topology survives.
+  std::set<std::pair<int, int>> runs;
+  for (const SkeletonWay& s : skeleton.ways) {
+    const std::vector<int>& ns = s.way.nodes;
+    size_t i = 0;
+    while (i + 1 < ns.size()) {
+      size_t j = i + 1;
+      while (j + 1 < ns.size() && !frozen[static_cast<size_t>(ns[j])]) ++j;
+      const std::pair<int, int> key{std::min(ns[i], ns[j]), std::max(ns[i], ns[j])};
+      if (j > i + 1 && (ns[i] == ns[j] || !runs.insert(key).second))
+        frozen[static_cast<size_t>(ns[(i + j) / 2])] = 1;
+      if (j == i + 1) runs.insert(key);
+      i = j;
+    }
+  }
   for (int p : skeleton.places)
     for (const auto& shape : places[static_cast<size_t>(p)].shapes)
       for (int n : shape) pinned[static_cast<size_t>(n)] = 1;
