@@ -58,7 +58,7 @@ def main():
                 r['mean_block_area_before'], r['mean_block_area_after']))
     print()
     print('| variant (shF 0.15, 100×100) | entropy before → after (nats) | right angles before → after '
-          '| median |angle−90°| before → after | new crossings |')
+          '| median deviation from 90° before → after | new crossings |')
     print('|---|---|---|---|---|')
     variants = [('thesis (no post-process)', []), ('-straighten', ['-straighten']),
                 ('-rotate auto', ['-rotate', 'auto']), ('-rotate auto -straighten', ['-rotate', 'auto', '-straighten']),
