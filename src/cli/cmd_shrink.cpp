@@ -37,10 +37,11 @@ app::CommandSpec spec() {
       "translation, order of landmark pairs, crossings, dead ends, orientation entropy, block areas). "
       "See docs/shrink.md.";
   s.group = "City shrinking";
-  s.positionals = {{"osm", "OpenStreetMap file (.osm XML or .osm.pbf).", Role::InputFile},
-                   {"importance", "Importance file: .osmi, or a vector dataset with an 'importance' field.",
-                    Role::InputFile},
-                   {"output", "Vector file to create (GeoPackage).", Role::OutputVector}};
+  s.positionals = {
+      {"osm", "OpenStreetMap file (.osm XML or .osm.pbf); in QGIS any layer of it.", Role::InputVector},
+      {"importance", "Importance file: .osmi, or a vector layer with an 'importance' field.",
+       Role::InputVector},
+      {"output", "Vector file to create (GeoPackage).", Role::OutputVector}};
   s.outputLayers = {"streets",      "places", "place_lines",  "place_points",
                     "full_streets", "seams",  "shrink_report"};
   auto& o = s.options;
