@@ -196,6 +196,12 @@ TEST(Pipeline, LandmarksTranslateNodesMoveByWholePixelsTowardsTheOrigin) {
   const int a = addNode(city, 520, 520), b = addNode(city, 580, 520), c = addNode(city, 580, 560),
             d = addNode(city, 540, 590);
   museum.shapes = {{a, b, c, d, a}};
+  Place hall;  // a long, low landmark: seams could pass between its corners
+  hall.id = "h";
+  hall.appearW = 0.8;
+  const int h0 = addNode(city, 210, 260), h1 = addNode(city, 790, 260), h2 = addNode(city, 790, 290),
+            h3 = addNode(city, 210, 290);
+  hall.shapes = {{h0, h1, h2, h3, h0}};
   Place tower;
   tower.id = "t";
   tower.appearW = 0.7;
@@ -205,7 +211,7 @@ TEST(Pipeline, LandmarksTranslateNodesMoveByWholePixelsTowardsTheOrigin) {
   o.carving.verticalSeams = 20;
   o.carving.horizontalSeams = 15;
   o.selection.shrinkFactor = 0.3;
-  const ShrinkResult r = shrinkCity({city, {museum, tower}}, o);
+  const ShrinkResult r = shrinkCity({city, {museum, hall, tower}}, o);
   EXPECT_EQ(r.report.value("image_width"), 100);
   EXPECT_EQ(r.report.value("seams_vertical"), 20);
   EXPECT_EQ(r.report.value("final_height"), 85);
@@ -216,7 +222,7 @@ TEST(Pipeline, LandmarksTranslateNodesMoveByWholePixelsTowardsTheOrigin) {
   EXPECT_EQ(r.measures.newDeadEnds, 0);
   EXPECT_EQ(r.measures.componentsAfter, 1);
   EXPECT_EQ(r.measures.orderViolationsX + r.measures.orderViolationsY, 0);
-  ASSERT_EQ(r.places.size(), 2u);
+  ASSERT_EQ(r.places.size(), 3u);
   const Polygon& moved = std::get<Polygon>(r.places[0].geometry);
   const Vec2 shift = moved.outer[0] - Vec2{520, 520};
   const double cell = r.report.value("cell_size");
@@ -228,7 +234,7 @@ TEST(Pipeline, LandmarksTranslateNodesMoveByWholePixelsTowardsTheOrigin) {
   EXPECT_EQ(r.seams.size(), 35u);
   EXPECT_FALSE(r.fullStreets.empty());
   // Same input, same output.
-  const ShrinkResult again = shrinkCity({city, {museum, tower}}, o);
+  const ShrinkResult again = shrinkCity({city, {museum, hall, tower}}, o);
   ASSERT_EQ(again.streets.size(), r.streets.size());
   for (size_t i = 0; i < r.streets.size(); ++i) EXPECT_EQ(again.streets[i].line, r.streets[i].line);
 }
