@@ -2,14 +2,14 @@
 # `urbanvec shrink` (issue 19; spec pueyo-urban-data.md part B) on Monaco with a small image, so it runs
 # in seconds: layers and CRS, the key invariants checked independently of the report (landmarks are pure
 # translations, landmark pairs keep their left-right and above-below order, intersections kept, the
-# report's crossing count), determinism, and every bad input of the issue.
+# no new street crossing, recounted), determinism, and every bad input of the issue.
 set -e
 source "$(dirname "$0")/lib.sh"
 
 OSM="$SAMPLE_DIR/sources/monaco.osm.pbf"
 OSMI="$SAMPLE_DIR/monaco/monaco.osmi"
 PY=/usr/bin/python3
-ARGS=(-q -shf 0.15 -image-size 150 -seams 30 25)
+ARGS=(-q -shf 0.15 -image-size 300 -seams 30 25)
 
 run_cmd shrink "${ARGS[@]}" "$OSM" "$OSMI" "$WORK/small.gpkg"
 expect_status 0
@@ -25,7 +25,7 @@ case "$info" in *'ID["EPSG",32632]'*) ;; *) fail "streets not in UTM 32N (the zo
 expect_eq "$(feature_count "$WORK/small.gpkg" seams)" "55" "one line per removed seam"
 expect_eq "$(sqlite3 "$WORK/small.gpkg" "select count(*) from layer_styles where f_table_name in ('streets','places','seams','full_streets')")" "4" "styles"
 # The same run with no seam: the skeleton in its original place, for the independent checks.
-run_cmd shrink -q -shf 0.15 -image-size 150 -seams 0 0 "$OSM" "$OSMI" "$WORK/orig.gpkg"
+run_cmd shrink -q -shf 0.15 -image-size 300 -seams 0 0 "$OSM" "$OSMI" "$WORK/orig.gpkg"
 expect_status 0
 
 $PY - "$WORK/orig.gpkg" "$WORK/small.gpkg" <<'PY' || fail "invariants"
@@ -81,14 +81,14 @@ assert r["new_dead_ends"] == 0, r
 assert r["final_width"] == r["image_width"] - 30 and r["final_height"] == r["image_height"] - 25, r
 ideal = (r["final_width"] * r["final_height"]) / (r["image_width"] * r["image_height"])
 assert abs(r["area_ideal"] - ideal) < 1e-12 and abs(r["area_kept"] - ideal) < 0.08, r
-# The report's crossing count, recounted from the streets layer: way pairs whose segments cross
-# properly (not at a shared vertex).
+# Topology: no new crossing. Recounted from the streets layers, independently of the report: way pairs
+# (by osm_id) whose segments cross properly (not at a shared vertex), after carving and not before.
 def crossings(ds):
     segs = []
-    for k, f in enumerate(ds.GetLayer("streets")):
+    for f in ds.GetLayer("streets"):
         g = f.GetGeometryRef()
         pts = [g.GetPoint_2D(i) for i in range(g.GetPointCount())]
-        segs += [(k, pts[i], pts[i + 1]) for i in range(len(pts) - 1)]
+        segs += [(f.GetField("osm_id"), pts[i], pts[i + 1]) for i in range(len(pts) - 1)]
     def o(a, b, c): return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
     cell, grid, pairs = 100.0, {}, set()
     for s, (_, p, q) in enumerate(segs):
@@ -102,9 +102,10 @@ def crossings(ds):
                 if len({p1, p2, q1, q2}) < 4: continue
                 if o(p1, p2, q1) * o(p1, p2, q2) < 0 and o(q1, q2, p1) * o(q1, q2, p2) < 0:
                     pairs.add((min(w1, w2), max(w1, w2)))
-    return len(pairs)
-assert crossings(small) == r["crossings_after"], (crossings(small), r["crossings_after"])
-assert crossings(orig) == r["crossings_before"], (crossings(orig), r["crossings_before"])
+    return pairs
+after, before = crossings(small), crossings(orig)
+assert len(after) == r["crossings_after"] and len(before) == r["crossings_before"] > 0, (len(after), len(before), r)
+assert not (after - before) and r["new_crossings"] == 0, ("new crossings", sorted(after - before))
 PY
 
 # Same input, same output.

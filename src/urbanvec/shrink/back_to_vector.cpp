@@ -17,36 +17,40 @@ bool PointMapper::map(const Vec2& p, bool collapse, Vec2& out) const {
   const int r = frame_.row(p.y), c = frame_.col(p.x);
   const int w = frame_.width;
   int o = r * w + c;
-  if (carve_.finalRow[static_cast<size_t>(o)] >= 0) {
+  // The point's place inside its pixel, in pixel units; it follows each collapse of the chain: a
+  // pixel removed onto its left neighbour puts its content on that neighbour's right edge, and so on,
+  // the last collapse along each axis deciding.
+  double fx = (p.x - frame_.x0) / frame_.cell - c, fy = (frame_.yTop - p.y) / frame_.cell - r;
+  if (carve_.finalRow[static_cast<size_t>(o)] < 0) {
+    if (!collapse) return false;
+    for (int guard = 0; o >= 0 && carve_.finalRow[static_cast<size_t>(o)] < 0 && guard < 1 << 24; ++guard) {
+      switch (carve_.mergeSide[static_cast<size_t>(o)]) {
+        case MergeSide::OntoLeft:
+          fx = 1.0;
+          break;
+        case MergeSide::OntoRight:
+          fx = 0.0;
+          break;
+        case MergeSide::OntoAbove:
+          fy = 1.0;
+          break;
+        case MergeSide::OntoBelow:
+          fy = 0.0;
+          break;
+        case MergeSide::None:
+          break;
+      }
+      o = carve_.mergedInto[static_cast<size_t>(o)];
+    }
+    if (o < 0 || carve_.finalRow[static_cast<size_t>(o)] < 0) return false;
+  }
+  if (o == r * w + c) {  // a surviving pixel: a pure translation
     out = {p.x - (c - carve_.finalCol[static_cast<size_t>(o)]) * frame_.cell,
            p.y + (r - carve_.finalRow[static_cast<size_t>(o)]) * frame_.cell};
     return true;
   }
-  if (!collapse) return false;
-  const MergeSide side = carve_.mergeSide[static_cast<size_t>(o)];
-  int s = carve_.mergedInto[static_cast<size_t>(o)];
-  for (int guard = 0; s >= 0 && carve_.finalRow[static_cast<size_t>(s)] < 0 && guard < 1 << 24; ++guard)
-    s = carve_.mergedInto[static_cast<size_t>(s)];
-  if (s < 0) return false;
-  const int sr = s / w, sc = s % w;
-  const int fr = carve_.finalRow[static_cast<size_t>(s)], fc = carve_.finalCol[static_cast<size_t>(s)];
-  out = {p.x - (sc - fc) * frame_.cell, p.y + (sr - fr) * frame_.cell};
-  switch (side) {
-    case MergeSide::OntoLeft:
-      out.x = frame_.x0 + (fc + 1) * frame_.cell;
-      break;
-    case MergeSide::OntoRight:
-      out.x = frame_.x0 + fc * frame_.cell;
-      break;
-    case MergeSide::OntoAbove:
-      out.y = frame_.yTop - (fr + 1) * frame_.cell;
-      break;
-    case MergeSide::OntoBelow:
-      out.y = frame_.yTop - fr * frame_.cell;
-      break;
-    case MergeSide::None:
-      break;
-  }
+  out = {frame_.x0 + (carve_.finalCol[static_cast<size_t>(o)] + fx) * frame_.cell,
+         frame_.yTop - (carve_.finalRow[static_cast<size_t>(o)] + fy) * frame_.cell};
   return true;
 }
 

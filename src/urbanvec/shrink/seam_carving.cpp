@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 
@@ -102,8 +103,11 @@ struct Work {
 }  // namespace
 
 CarveResult carveSeams(const std::vector<float>& energy, int width, int height, int vertical, int horizontal,
-                       SeamOrder order, const Progress& progress) {
+                       SeamOrder order, const Progress& progress, const std::vector<int>* wayLabels,
+                       const std::vector<int>* pieceWay) {
   CarveResult result;
+  std::vector<int> label;
+  if (wayLabels) label = *wayLabels;
   const size_t n = static_cast<size_t>(width) * static_cast<size_t>(height);
   Work work;
   work.energy = energy;
@@ -114,6 +118,33 @@ CarveResult carveSeams(const std::vector<float>& energy, int width, int height, 
   work.stride = static_cast<size_t>(width);
   result.mergedInto.assign(n, -1);
   result.mergeSide.assign(n, MergeSide::None);
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  auto sameWay = [&](int a, int b) {
+    return a == b || (a >= 0 && b >= 0 && pieceWay &&
+                      (*pieceWay)[static_cast<size_t>(a)] == (*pieceWay)[static_cast<size_t>(b)] &&
+                      std::abs(a - b) <= 1);
+  };
+  // Two ways within one pixel: freeze both pixels (buffer offsets).
+  auto separate = [&](size_t p, size_t q) {
+    const int lp = label[static_cast<size_t>(work.index[p])], lq = label[static_cast<size_t>(work.index[q])];
+    if (lp == -1 || lq == -1 || (lp >= 0 && sameWay(lp, lq))) return;
+    for (size_t o : {p, q})
+      if (!std::isinf(work.energy[o])) work.energy[o] = kInf, ++result.separationFrozen;
+  };
+  if (!label.empty()) {
+    for (int r = 0; r < height; ++r)
+      for (int c = 0; c < width; ++c) {
+        const size_t p = static_cast<size_t>(r) * static_cast<size_t>(width) + static_cast<size_t>(c);
+        if (label[p] == -2) separate(p, p);
+        if (c + 1 < width) separate(p, p + 1);
+        if (r + 1 < height) {
+          const size_t below = p + static_cast<size_t>(width);
+          separate(p, below);
+          if (c > 0) separate(p, below - 1);
+          if (c + 1 < width) separate(p, below + 1);
+        }
+      }
+  }
 
   ProgressTicker ticker(progress, "seam carving", static_cast<size_t>(vertical + horizontal));
   int leftV = vertical, leftH = horizontal;
@@ -143,6 +174,17 @@ CarveResult carveSeams(const std::vector<float>& energy, int width, int height, 
       seam.pixels[static_cast<size_t>(r)] = removed;
       const bool ontoLower = c > 0;  // collapse onto the previous pixel of the line, else the next
       result.mergedInto[static_cast<size_t>(removed)] = idx[ontoLower ? c - 1 : c + 1];
+      if (!label.empty()) {  // the removed pixel's ways now lie on the edge of the pixel it collapsed onto
+        int& onto = label[static_cast<size_t>(idx[ontoLower ? c - 1 : c + 1])];
+        const int mine = label[static_cast<size_t>(removed)];
+        if (mine != -1 && !sameWay(onto, mine)) {
+          onto = onto == -1 ? mine : -2;
+          if (onto == -2) {
+            float& eo = e[ontoLower ? c - 1 : c + 1];
+            if (!std::isinf(eo)) eo = kInf, ++result.separationFrozen;
+          }
+        }
+      }
       result.mergeSide[static_cast<size_t>(removed)] =
           doVertical ? (ontoLower ? MergeSide::OntoLeft : MergeSide::OntoRight)
                      : (ontoLower ? MergeSide::OntoAbove : MergeSide::OntoBelow);
@@ -151,6 +193,18 @@ CarveResult carveSeams(const std::vector<float>& energy, int width, int height, 
       std::memmove(e + c, e + c + 1, tail * sizeof(float));
     }
     --work.cols;
+    if (!label.empty()) {  // new neighbours across the seam
+      for (int r = 0; r < work.rows; ++r) {
+        const int c = std::min(work.seam[static_cast<size_t>(r)], work.cols - 1);
+        const size_t row = static_cast<size_t>(r) * work.stride;
+        for (int left = std::max(c - 1, 0); left <= c && left + 1 < work.cols; ++left) {
+          const size_t p = row + static_cast<size_t>(left);
+          separate(p, p + 1);
+          if (r + 1 < work.rows) separate(p, p + work.stride + 1), separate(p + 1, p + work.stride);
+          if (r > 0) separate(p, p - work.stride + 1), separate(p + 1, p - work.stride);
+        }
+      }
+    }
     result.seams.push_back(std::move(seam));
     if (doVertical)
       --leftV, ++result.verticalRemoved;

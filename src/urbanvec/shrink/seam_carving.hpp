@@ -35,13 +35,24 @@ struct CarveResult {
   /// path without filling a line; -2 when the direction was not blocked.
   int verticalBlockedAt = -2;
   int horizontalBlockedAt = -2;
+  /// Pixels given +infinity to keep distinct ways apart (with wayLabels), initially and after seams.
+  size_t separationFrozen = 0;
 };
 
 /// Removes up to `vertical` vertical and `horizontal` horizontal minimal-energy 8-connected seams
 /// (dynamic programming, O(pixels) per seam; +infinity pixels are never crossed), in `order`. The
 /// energy is not recomputed: it is carried with the pixels (§B.10 [INFERENCE]). Deterministic ties:
 /// the lowest column of the last row; backtracking prefers straight down, then left, then right.
+///
+/// `wayLabels` (optional, per original pixel): the piece of street way drawn in the pixel, -1 for none,
+/// -2 for several (see wayLabels in dense_ways.hpp; `pieceWay` gives each piece's way: consecutive
+/// pieces of one way count as the same way). Pixels holding several ways, or 8-adjacent to a pixel of another
+/// way, get +infinity, and so do the pixels that become such after a seam (a removed pixel's ways move onto
+/// the neighbour it collapses onto; pixels on both sides of the seam become neighbours): a seam never moves
+/// one way and not another within a pixel of it, nor collapses two ways onto one pixel edge.
 CarveResult carveSeams(const std::vector<float>& energy, int width, int height, int vertical, int horizontal,
-                       SeamOrder order, const Progress& progress = {});
+                       SeamOrder order, const Progress& progress = {},
+                       const std::vector<int>* wayLabels = nullptr,
+                       const std::vector<int>* pieceWay = nullptr);
 
 }  // namespace urbanvec::shrink

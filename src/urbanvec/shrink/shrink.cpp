@@ -16,6 +16,7 @@
 #include "urbanvec/shrink/cleaning.hpp"
 #include "urbanvec/shrink/cluster_connection.hpp"
 #include "urbanvec/shrink/dead_end_connection.hpp"
+#include "urbanvec/shrink/dense_ways.hpp"
 #include "urbanvec/shrink/energy.hpp"
 #include "urbanvec/shrink/indirect_streets.hpp"
 #include "urbanvec/shrink/rasterise.hpp"
@@ -65,6 +66,8 @@ void validate(const ShrinkOptions& o) {
                         std::to_string(o.carving.imageSize));
   if (o.carving.verticalSeams < 0 || o.carving.horizontalSeams < 0)
     throw invalidOption("the seam counts (-seams) must not be negative");
+  if (!(o.carving.densifySpacing >= 0.0) || !(o.carving.simplifyTolerance >= 0.0))
+    throw invalidOption("the densify spacing and simplify tolerance must not be negative");
   if (o.connection.mDegree < 0) throw invalidOption("m-degree (-m-degree) must not be negative");
   if (!(o.selection.proximityThreshold >= 0.0))
     throw invalidOption("proxStrThreshold (-prox-str-threshold) must not be negative");
@@ -309,7 +312,22 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
   reportProgress(progress, 0.2, "rasterising");
 
   // step8Pre (§B.9).
+  std::vector<Vec2> before(nNodes);
+  for (size_t n = 0; n < nNodes; ++n) before[n] = city.nodes[n].p;
+  std::vector<std::vector<int>> waysBefore, waysAfter;
+  for (const SkeletonWay& s : skeleton.ways) waysBefore.push_back(s.way.nodes);
+  const bool dense = options.carving.densifySpacing > 0.0;
+  std::vector<Vec2> pointPos = pos, pointBefore = before;
+  const std::vector<std::vector<int>> wayPoints =
+      dense ? densifyWays(waysBefore, options.carving.densifySpacing * frame.cell, pointPos, pointBefore)
+            : waysBefore;
+  const size_t nPoints = pointPos.size();
   const std::vector<float> energy = seamEnergy(raster, options.carving.grayDistBalance);
+  std::vector<int> labels, pieceWay;
+  if (dense && options.carving.separateWays)
+    labels =
+        wayLabels(wayPoints, pointPos, frame.width, frame.height, frame.cell, options.carving.separationPiece,
+                  pieceWay, [&](const Vec2& p) { return frame.row(p.y) * frame.width + frame.col(p.x); });
   size_t frozenPixels = 0;
   for (int owner : raster.freezeOwner) frozenPixels += owner != kNotFrozen;
   put("frozen_pixels", static_cast<double>(frozenPixels));
@@ -318,7 +336,9 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
   // step8SC (§B.10).
   const CarveResult carve =
       carveSeams(energy, frame.width, frame.height, options.carving.verticalSeams,
-                 options.carving.horizontalSeams, options.carving.order, subProgress(progress, 0.25, 0.85));
+                 options.carving.horizontalSeams, options.carving.order, subProgress(progress, 0.25, 0.85),
+                 labels.empty() ? nullptr : &labels, &pieceWay);
+  put("way_separation_pixels", static_cast<double>(carve.separationFrozen));
   timer.lap("step8SC");
   put("seams_vertical_requested", options.carving.verticalSeams);
   put("seams_horizontal_requested", options.carving.horizontalSeams);
@@ -354,7 +374,9 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
                            : " by the landmark" + std::string(owners.size() > 2 ? "s " : " ") + names +
                                  (owners.count(kFrozenStreetNode) ? " and street intersections" : "");
     } else {
-      why = "every path across the image crosses a frozen pixel (landmarks and street intersections)";
+      why =
+          "every path across the image crosses a frozen pixel (landmarks, street intersections, and streets "
+          "within a pixel of another street, which a seam there would fold over each other)";
     }
     report.notes.push_back(std::string(dir) + " seams " + seamRange(removed + 1, requested) + " of " +
                            std::to_string(requested) + " could not be removed: " + why);
@@ -363,36 +385,73 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
   blockedNote(true, options.carving.verticalSeams, carve.verticalRemoved, carve.verticalBlockedAt);
   blockedNote(false, options.carving.horizontalSeams, carve.horizontalRemoved, carve.horizontalBlockedAt);
 
-  // step8Pos (§B.11).
+  // step8Pos (§B.11). Every skeleton way is densified (synthetic points at most densifySpacing pixels
+  // apart) and each point moves with its own pixel, so the ways follow the carved raster; the synthetic
+  // points and the nodes whose pixel a seam removed are then dropped where that creates no crossing.
   const PointMapper mapper(frame, carve);
-  std::vector<Vec2> after(nNodes, Vec2{kNaN, kNaN});
-  int dropped = 0;
-  for (size_t n = 0; n < nNodes; ++n) {
-    if (!skeletonNode[n] && !pinned[n]) continue;
-    Vec2 q;
-    if (mapper.map(pos[n], options.carving.keepCarvedNodes || pinned[n], q))
-      after[n] = unrotate(q);
-    else
-      ++dropped;
+  put("synthetic_points", static_cast<double>(nPoints - nNodes));
+  std::vector<Vec2> after(nPoints, Vec2{kNaN, kNaN});
+  std::vector<char> removable(nPoints, 0), carved(nPoints, 0);
+  // Points of a segment shared by several ways stay: dropping them in one way and not the other would
+  // split the shared segment.
+  std::vector<int> pointUse(nPoints, 0);
+  for (const auto& points : wayPoints) {
+    std::set<int> distinct(points.begin(), points.end());
+    for (int n : distinct) ++pointUse[static_cast<size_t>(n)];
   }
-  put("nodes_dropped", dropped);
-  std::vector<Vec2> before(nNodes);
-  for (size_t n = 0; n < nNodes; ++n) before[n] = city.nodes[n].p;
-  std::vector<std::vector<int>> waysBefore, waysAfter;
-  for (const SkeletonWay& s : skeleton.ways) waysBefore.push_back(s.way.nodes);
+  for (size_t n = 0; n < nPoints; ++n) {
+    const bool synthetic = n >= nNodes;
+    if (!synthetic && !skeletonNode[n] && !pinned[n]) continue;
+    const bool keep = options.carving.keepCarvedNodes || (!synthetic && pinned[n]);
+    Vec2 q;
+    if (dense) {
+      if (!mapper.map(pointPos[n], true, q)) continue;
+      carved[n] = !synthetic && !keep && !mapper.survives(pointPos[n]);
+      removable[n] = (synthetic || carved[n]) && pointUse[n] == 1;
+    } else if (!mapper.map(pointPos[n], keep, q)) {
+      continue;
+    }
+    after[n] = unrotate(q);
+  }
   if (options.post.straighten) {
     std::vector<char> fixed = pinned;
-    put("straightened_ways", straightenWays(waysBefore, before, after, fixed, options.post.straightTolerance,
-                                            options.post.straightenRounds));
+    fixed.resize(nPoints, 0);
+    put("straightened_ways", straightenWays(wayPoints, pointBefore, after, fixed,
+                                            options.post.straightTolerance, options.post.straightenRounds));
+  }
+  for (const std::vector<int>& points : wayPoints) {
+    std::vector<int> kept;
+    for (int n : points) {
+      const Vec2 p = after[static_cast<size_t>(n)];
+      if (!std::isfinite(p.x) || (!kept.empty() && kept.back() == n)) continue;
+      // A removable point on top of the previous one adds nothing.
+      if (!kept.empty() && removable[static_cast<size_t>(n)] && after[static_cast<size_t>(kept.back())] == p)
+        continue;
+      kept.push_back(n);
+    }
+    waysAfter.push_back(std::move(kept));
+  }
+  if (dense) {
+    SimplifyStats simplify;
+    waysAfter = simplifyWithoutCrossings(waysAfter, after, removable, carved,
+                                         options.carving.simplifyTolerance * frame.cell, &simplify);
+    put("points_kept_to_avoid_crossings", simplify.keptCarved);
+  }
+  {
+    std::vector<char> present(nNodes, 0);
+    for (const auto& points : waysAfter)
+      for (int n : points)
+        if (static_cast<size_t>(n) < nNodes) present[static_cast<size_t>(n)] = 1;
+    int dropped = 0;
+    for (const auto& way : waysBefore)
+      for (int n : way)
+        if (!present[static_cast<size_t>(n)]) ++dropped, present[static_cast<size_t>(n)] = 1;
+    put("nodes_dropped", dropped);
   }
   int lostWays = 0;
   for (size_t w = 0; w < skeleton.ways.size(); ++w) {
     const SkeletonWay& s = skeleton.ways[w];
-    std::vector<int> kept;
-    for (int n : s.way.nodes)
-      if (std::isfinite(after[static_cast<size_t>(n)].x) && (kept.empty() || kept.back() != n))
-        kept.push_back(n);
-    waysAfter.push_back(kept);
+    const std::vector<int>& kept = waysAfter[w];
     if (kept.size() < 2) {
       ++lostWays;
       continue;
@@ -446,7 +505,7 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
   MeasureInput mi;
   mi.waysBefore = std::move(waysBefore);
   mi.waysAfter = std::move(waysAfter);
-  mi.before = before;
+  mi.before = pointBefore;
   mi.after = after;
   for (int p : skeleton.places) mi.landmarks.push_back(places[static_cast<size_t>(p)].shapes);
   const ShrinkMeasures& m = result.measures = measureShrink(mi);

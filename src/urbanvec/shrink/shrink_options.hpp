@@ -68,6 +68,19 @@ struct CarvingOptions {
   /// Keep non-frozen skeleton nodes whose pixel a seam removes (collapsed onto the seam's edge)
   /// instead of deleting them from their ways (§B.11 deletes them).
   bool keepCarvedNodes = false;
+  /// Back to vector (§B.11): densify every skeleton way so consecutive points are at most this many
+  /// pixels apart before carving, so a way follows the carved raster instead of keeping straight
+  /// segments between distant nodes (which fold over nearby ways); 0 = the thesis (nodes only).
+  double densifySpacing = 1.0;
+  /// After carving, a synthetic point (or a node whose pixel was removed) is dropped only when the
+  /// shortcut stays within this many pixels of the points it replaces and touches no other segment.
+  double simplifyTolerance = 1.0;
+  /// Freeze the pixels where two different skeleton ways come within one pixel of each other (a seam
+  /// there would move one way and not the other and fold them over each other).
+  bool separateWays = true;
+  /// Length, pixels, of the pieces a way is cut into for that separation: a way coming back within a
+  /// pixel of itself more than a piece further along is kept apart from itself too.
+  double separationPiece = 4.0;
 };
 
 struct PostOptions {
