@@ -91,6 +91,45 @@ class SegmentIndex {
   }
   void kill(int id) { segs_[static_cast<size_t>(id)].alive = false; }
 
+  /// True when a point of a live segment (other than way `way`'s dense segments k in [k0, k1)) lies
+  /// inside the ring `ring` (point ids, implicitly closed): dropping the ring's inner points would move
+  /// the way to the other side of it.
+  bool pocketHolds(const std::vector<int>& ring, int way, int k0, int k1) {
+    ++query_;
+    double minX = 1e300, minY = 1e300, maxX = -1e300, maxY = -1e300;
+    for (int n : ring) {
+      const Vec2 p = pos_[static_cast<size_t>(n)];
+      minX = std::min(minX, p.x), maxX = std::max(maxX, p.x), minY = std::min(minY, p.y),
+      maxY = std::max(maxY, p.y);
+    }
+    auto inside = [&](int id) {
+      const Vec2 p = pos_[static_cast<size_t>(id)];
+      if (p.x < minX || p.x > maxX || p.y < minY || p.y > maxY) return false;
+      if (std::find(ring.begin(), ring.end(), id) != ring.end()) return false;
+      bool in = false;
+      for (size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+        const Vec2 a = pos_[static_cast<size_t>(ring[i])], b = pos_[static_cast<size_t>(ring[j])];
+        if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y)) in = !in;
+      }
+      return in;
+    };
+    bool hit = false;
+    forCells({minX, minY}, {maxX, maxY}, [&](size_t c) {
+      if (hit) return;
+      for (int id : grid_[c]) {
+        if (stamp_[static_cast<size_t>(id)] == query_) continue;
+        stamp_[static_cast<size_t>(id)] = query_;
+        const Seg& s = segs_[static_cast<size_t>(id)];
+        if (!s.alive || (s.way == way && s.k >= k0 && s.k < k1)) continue;
+        if (inside(s.a) || inside(s.b)) {
+          hit = true;
+          return;
+        }
+      }
+    });
+    return hit;
+  }
+
   /// True when segment a-b shares a point with a live segment other than way `way`'s dense segments
   /// k in [k0, k1), apart from a shared end point id.
   bool blocked(int a, int b, int way, int k0, int k1) {
@@ -190,6 +229,11 @@ std::vector<std::vector<int>> simplifyWithoutCrossings(const std::vector<std::ve
           ok = distanceToSegment(pos[static_cast<size_t>(pts[m])], a, b) <= tolerance;
         if (ok)
           ok = !index.blocked(pts[i], pts[e], static_cast<int>(w), static_cast<int>(i), static_cast<int>(e));
+        if (ok && e > i + 1) {
+          const std::vector<int> ring(pts.begin() + static_cast<std::ptrdiff_t>(i),
+                                      pts.begin() + static_cast<std::ptrdiff_t>(e) + 1);
+          ok = !index.pocketHolds(ring, static_cast<int>(w), static_cast<int>(i), static_cast<int>(e));
+        }
         if (!ok) break;
         j = e;
       }

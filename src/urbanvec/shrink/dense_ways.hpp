@@ -74,9 +74,10 @@ struct SimplifyStats {
 
 /// Drops removable points (`removable[n]`) of the dense `ways` (positions `pos`, all finite) where the
 /// shortcut deviates at most `tolerance` from every point it replaces and intersects (crossing, touching
-/// or overlapping) no segment of any way other than at a shared point; greedy along each way, in way
-/// order, each accepted shortcut replacing its segments in the index at once. `carved[n]` marks real
-/// nodes for the stats.
+/// or overlapping) no segment of any way other than at a shared point, and the pocket between the
+/// shortcut and the points it replaces holds no point of another segment (no way changes sides); greedy along
+/// each way, in way order, each accepted shortcut replacing its segments in the index at once. `carved[n]`
+/// marks real nodes for the stats.
 std::vector<std::vector<int>> simplifyWithoutCrossings(const std::vector<std::vector<int>>& ways,
                                                        const std::vector<Vec2>& pos,
                                                        const std::vector<char>& removable,

@@ -80,7 +80,7 @@ struct CarvingOptions {
   bool separateWays = true;
   /// Length, pixels, of the pieces a way is cut into for that separation: a way coming back within a
   /// pixel of itself more than a piece further along is kept apart from itself too.
-  double separationPiece = 4.0;
+  double separationPiece = 2.0;
 };
 
 struct PostOptions {
