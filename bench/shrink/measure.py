@@ -41,7 +41,7 @@ def main():
     out = a.out or tempfile.mkdtemp(prefix='shrink-measures-')
     os.makedirs(out, exist_ok=True)
 
-    print('| shF | seams | area kept (ideal) | landmark dev. m | order flips x/y | bearing change ° '
+    print('| shF | seams (removed) | area kept (ideal) | landmark dev. m | order flips x/y | bearing change ° '
           '| distance ratio min/med/max | new crossings | intersections kept | components | new dead ends '
           '| mean block m² before → after |')
     print('|---|---|---|---|---|---|---|---|---|---|---|---|')
@@ -49,8 +49,8 @@ def main():
         for s in (50, 100, 150):
             r = run(a.urbanvec, a.osm, a.osmi, os.path.join(out, 'shf%g_%d.gpkg' % (shf, s)),
                     ['-shf', str(shf), '-seams', str(s), str(s)])
-            print('| %g | %d×%d | %.3f (%.3f) | %.1e | %d/%d | %.1f | %.2f/%.2f/%.2f | %d | %d/%d | %d→%d | %d | %.0f → %.0f |' % (
-                shf, s, s, r['area_kept'], r['area_ideal'], r['landmark_max_deviation'],
+            print('| %g | %d×%d (%d×%d) | %.3f (%.3f) | %.1e | %d/%d | %.1f | %.2f/%.2f/%.2f | %d | %d/%d | %d→%d | %d | %.0f → %.0f |' % (
+                shf, s, s, r['seams_vertical'], r['seams_horizontal'], r['area_kept'], r['area_ideal'], r['landmark_max_deviation'],
                 r['order_violations_x'], r['order_violations_y'], r['bearing_change_median'],
                 r['distance_ratio_min'], r['distance_ratio_median'], r['distance_ratio_max'],
                 r['new_crossings'], r['intersections_kept'], r['intersections_before'],
@@ -58,18 +58,19 @@ def main():
                 r['mean_block_area_before'], r['mean_block_area_after']))
     print()
     print('| variant (shF 0.15, 100×100) | entropy before → after (nats) | right angles before → after '
-          '| median deviation from 90° before → after | new crossings |')
-    print('|---|---|---|---|---|')
-    variants = [('thesis (no post-process)', []), ('-straighten', ['-straighten']),
+          '| median deviation from 90° before → after | new crossings | seams removed |')
+    print('|---|---|---|---|---|---|')
+    variants = [('default (no post-process)', []), ('-straighten', ['-straighten']),
                 ('-rotate auto', ['-rotate', 'auto']), ('-rotate auto -straighten', ['-rotate', 'auto', '-straighten']),
-                ('-freeze-all-street-nodes', ['-freeze-all-street-nodes'])]
+                ('-freeze-all-street-nodes', ['-freeze-all-street-nodes']),
+                ('-translate-nodes-only (the thesis)', ['-translate-nodes-only'])]
     for name, extra in variants:
         r = run(a.urbanvec, a.osm, a.osmi, os.path.join(out, 'variant_%d.gpkg' % variants.index((name, extra))),
                 ['-shf', '0.15', '-seams', '100', '100'] + extra)
-        print('| %s | %.3f → %.3f | %.2f → %.2f | %.1f → %.1f | %d |' % (
+        print('| %s | %.3f → %.3f | %.2f → %.2f | %.1f → %.1f | %d | %d×%d |' % (
             name, r['entropy_before'], r['entropy_after'], r['right_angle_share_before'],
             r['right_angle_share_after'], r['angle_deviation_before'], r['angle_deviation_after'],
-            r['new_crossings']))
+            r['new_crossings'], r['seams_vertical'], r['seams_horizontal']))
     print('\n(GeoPackages in %s)' % out, file=sys.stderr)
 
 

@@ -91,6 +91,11 @@ app::CommandSpec spec() {
                   .oneOf({"bbox", "nodes"})
                   .byDefault("bbox")
                   .isAdvanced());
+  o.push_back(
+      option("-translate-nodes-only", ValueType::Flag, "",
+             "Back to vector as the thesis: move only the ways' nodes (no densified ways, no way "
+             "separation); every seam can go, but close ways can fold over each other (new crossings).")
+          .isAdvanced());
   o.push_back(option("-freeze-all-street-nodes", ValueType::Flag, "",
                      "Freeze every skeleton street node, so no street loses a node.")
                   .isAdvanced());
@@ -218,6 +223,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
                                        : shrink::LandmarkFreeze::BoundingBox;
   options.carving.freezeAllStreetNodes = args.flag("-freeze-all-street-nodes");
   options.carving.keepCarvedNodes = args.flag("-keep-carved-nodes");
+  if (args.flag("-translate-nodes-only")) options.carving.densifySpacing = 0.0;
   options.cleaning.removeOutsideBounds = !args.flag("-keep-outside-bbox");
   options.post.straighten = args.flag("-straighten");
   options.post.straightTolerance = args.real("-straight-tolerance");

@@ -135,6 +135,7 @@ CarveResult carveSeams(const std::vector<float>& energy, int width, int height, 
     for (int r = 0; r < height; ++r)
       for (int c = 0; c < width; ++c) {
         const size_t p = static_cast<size_t>(r) * static_cast<size_t>(width) + static_cast<size_t>(c);
+        if (label[p] == -1) continue;  // no way here: no pair to separate
         if (label[p] == -2) separate(p, p);
         if (c + 1 < width) separate(p, p + 1);
         if (r + 1 < height) {
