@@ -1,0 +1,257 @@
+// Step8Pos (spec §B.11): densified ways, moved point by point, and crossing-safe simplification.
+#include "urbanvec/shrink/dense_ways.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace urbanvec::shrink {
+
+std::vector<std::vector<int>> densifyWays(const std::vector<std::vector<int>>& ways, double maxStep,
+                                          std::vector<Vec2>& pos, std::vector<Vec2>& shadow) {
+  std::vector<std::vector<int>> dense;
+  dense.reserve(ways.size());
+  // A segment shared by several ways (same two nodes) gets the same synthetic points in each.
+  std::map<std::pair<int, int>, std::vector<int>> shared;
+  for (const auto& way : ways) {
+    std::vector<int> out;
+    for (size_t i = 0; i < way.size(); ++i) {
+      if (i > 0 && way[i - 1] != way[i]) {
+        const int u = std::min(way[i - 1], way[i]), v = std::max(way[i - 1], way[i]);
+        auto [it, added] = shared.try_emplace({u, v});
+        std::vector<int>& inner = it->second;  // from u to v
+        if (added) {
+          const Vec2 a = pos[static_cast<size_t>(u)], b = pos[static_cast<size_t>(v)];
+          const Vec2 sa = shadow[static_cast<size_t>(u)], sb = shadow[static_cast<size_t>(v)];
+          const double steps = std::ceil(distance(a, b) / maxStep - 1e-9);
+          const int k = static_cast<int>(std::clamp(steps, 1.0, 1e7));
+          for (int t = 1; t < k; ++t) {
+            const double f = static_cast<double>(t) / k;
+            inner.push_back(static_cast<int>(pos.size()));
+            pos.push_back(a + (b - a) * f);
+            shadow.push_back(sa + (sb - sa) * f);
+          }
+        }
+        if (way[i - 1] == u)
+          out.insert(out.end(), inner.begin(), inner.end());
+        else
+          out.insert(out.end(), inner.rbegin(), inner.rend());
+      }
+      out.push_back(way[i]);
+    }
+    dense.push_back(std::move(out));
+  }
+  return dense;
+}
+
+namespace {
+
+double orient(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return cross(b - a, c - a);
+}
+
+bool onSegment(const Vec2& a, const Vec2& b, const Vec2& p) {
+  return std::min(a.x, b.x) <= p.x && p.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= p.y &&
+         p.y <= std::max(a.y, b.y);
+}
+
+/// Closed segments p1p2 and q1q2 share a point (crossing, touching or overlapping).
+bool intersects(const Vec2& p1, const Vec2& p2, const Vec2& q1, const Vec2& q2) {
+  const double d1 = orient(p1, p2, q1), d2 = orient(p1, p2, q2), d3 = orient(q1, q2, p1),
+               d4 = orient(q1, q2, p2);
+  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return true;
+  return (d1 == 0 && onSegment(p1, p2, q1)) || (d2 == 0 && onSegment(p1, p2, q2)) ||
+         (d3 == 0 && onSegment(q1, q2, p1)) || (d4 == 0 && onSegment(q1, q2, p2));
+}
+
+/// Uniform grid of the current segments of every way.
+class SegmentIndex {
+ public:
+  struct Seg {
+    int a, b;    ///< point ids
+    int way, k;  ///< way and dense index of the segment's start, k = -1 for a shortcut
+    bool alive = true;
+  };
+
+  SegmentIndex(const std::vector<Vec2>& pos, double minX, double minY, double maxX, double maxY, double cell)
+      : pos_(pos), x0_(minX), y0_(minY), cell_(cell) {
+    nx_ = std::clamp(static_cast<int>((maxX - minX) / cell) + 1, 1, 4096);
+    ny_ = std::clamp(static_cast<int>((maxY - minY) / cell) + 1, 1, 4096);
+    cell_ = std::max({cell, (maxX - minX) / nx_ * 1.000001, (maxY - minY) / ny_ * 1.000001, 1e-9});
+    grid_.resize(static_cast<size_t>(nx_) * static_cast<size_t>(ny_));
+  }
+
+  int add(int a, int b, int way, int k) {
+    const int id = static_cast<int>(segs_.size());
+    segs_.push_back({a, b, way, k, true});
+    stamp_.push_back(0);
+    forCells(pos_[static_cast<size_t>(a)], pos_[static_cast<size_t>(b)],
+             [&](size_t c) { grid_[c].push_back(id); });
+    return id;
+  }
+  void kill(int id) { segs_[static_cast<size_t>(id)].alive = false; }
+
+  /// True when a point of a live segment (other than way `way`'s dense segments k in [k0, k1)) lies
+  /// inside the ring `ring` (point ids, implicitly closed): dropping the ring's inner points would move
+  /// the way to the other side of it.
+  bool pocketHolds(const std::vector<int>& ring, int way, int k0, int k1) {
+    ++query_;
+    double minX = 1e300, minY = 1e300, maxX = -1e300, maxY = -1e300;
+    for (int n : ring) {
+      const Vec2 p = pos_[static_cast<size_t>(n)];
+      minX = std::min(minX, p.x), maxX = std::max(maxX, p.x), minY = std::min(minY, p.y),
+      maxY = std::max(maxY, p.y);
+    }
+    auto inside = [&](int id) {
+      const Vec2 p = pos_[static_cast<size_t>(id)];
+      if (p.x < minX || p.x > maxX || p.y < minY || p.y > maxY) return false;
+      if (std::find(ring.begin(), ring.end(), id) != ring.end()) return false;
+      bool in = false;
+      for (size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+        const Vec2 a = pos_[static_cast<size_t>(ring[i])], b = pos_[static_cast<size_t>(ring[j])];
+        if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y)) in = !in;
+      }
+      return in;
+    };
+    bool hit = false;
+    forCells({minX, minY}, {maxX, maxY}, [&](size_t c) {
+      if (hit) return;
+      for (int id : grid_[c]) {
+        if (stamp_[static_cast<size_t>(id)] == query_) continue;
+        stamp_[static_cast<size_t>(id)] = query_;
+        const Seg& s = segs_[static_cast<size_t>(id)];
+        if (!s.alive || (s.way == way && s.k >= k0 && s.k < k1)) continue;
+        if (inside(s.a) || inside(s.b)) {
+          hit = true;
+          return;
+        }
+      }
+    });
+    return hit;
+  }
+
+  /// True when segment a-b shares a point with a live segment other than way `way`'s dense segments
+  /// k in [k0, k1), apart from a shared end point id.
+  bool blocked(int a, int b, int way, int k0, int k1) {
+    ++query_;
+    const Vec2 p = pos_[static_cast<size_t>(a)], q = pos_[static_cast<size_t>(b)];
+    bool hit = false;
+    forCells(p, q, [&](size_t c) {
+      if (hit) return;
+      for (int id : grid_[c]) {
+        if (stamp_[static_cast<size_t>(id)] == query_) continue;
+        stamp_[static_cast<size_t>(id)] = query_;
+        const Seg& s = segs_[static_cast<size_t>(id)];
+        if (!s.alive || (s.way == way && s.k >= k0 && s.k < k1)) continue;
+        if (s.a == a || s.a == b || s.b == a || s.b == b) {
+          // Sharing an end point: only a collinear overlap beyond it is a conflict.
+          const int shared = (s.a == a || s.b == a) ? a : b;
+          const int other = s.a == shared ? s.b : s.a;
+          const int mine = shared == a ? b : a;
+          const Vec2 o = pos_[static_cast<size_t>(other)], m = pos_[static_cast<size_t>(mine)],
+                     sp = pos_[static_cast<size_t>(shared)];
+          if (other != mine && orient(sp, m, o) == 0 && dot(m - sp, o - sp) > 0) hit = true;
+          if (other == mine) hit = true;  // the same segment twice
+          if (hit) return;
+          continue;
+        }
+        if (intersects(p, q, pos_[static_cast<size_t>(s.a)], pos_[static_cast<size_t>(s.b)])) {
+          hit = true;
+          return;
+        }
+      }
+    });
+    return hit;
+  }
+
+ private:
+  template <class F>
+  void forCells(const Vec2& a, const Vec2& b, F&& f) {
+    const int cx0 = cx(std::min(a.x, b.x)), cx1 = cx(std::max(a.x, b.x));
+    const int cy0 = cy(std::min(a.y, b.y)), cy1 = cy(std::max(a.y, b.y));
+    for (int y = cy0; y <= cy1; ++y)
+      for (int x = cx0; x <= cx1; ++x)
+        f(static_cast<size_t>(y) * static_cast<size_t>(nx_) + static_cast<size_t>(x));
+  }
+  int cx(double x) const { return std::clamp(static_cast<int>(std::floor((x - x0_) / cell_)), 0, nx_ - 1); }
+  int cy(double y) const { return std::clamp(static_cast<int>(std::floor((y - y0_) / cell_)), 0, ny_ - 1); }
+
+  const std::vector<Vec2>& pos_;
+  double x0_, y0_, cell_;
+  int nx_ = 1, ny_ = 1;
+  std::vector<std::vector<int>> grid_;
+  std::vector<Seg> segs_;
+  std::vector<unsigned> stamp_;
+  unsigned query_ = 0;
+};
+
+}  // namespace
+
+std::vector<std::vector<int>> simplifyWithoutCrossings(const std::vector<std::vector<int>>& ways,
+                                                       const std::vector<Vec2>& pos,
+                                                       const std::vector<char>& removable,
+                                                       const std::vector<char>& carved, double tolerance,
+                                                       SimplifyStats* stats) {
+  double minX = 1e300, minY = 1e300, maxX = -1e300, maxY = -1e300;
+  size_t segments = 0;
+  for (const auto& way : ways) {
+    for (int n : way) {
+      const Vec2 p = pos[static_cast<size_t>(n)];
+      minX = std::min(minX, p.x), maxX = std::max(maxX, p.x), minY = std::min(minY, p.y),
+      maxY = std::max(maxY, p.y);
+    }
+    segments += way.size();
+  }
+  std::vector<std::vector<int>> out(ways.size());
+  if (segments == 0) return out;
+  // About four segments per cell on average over the bounding box.
+  const double area = std::max((maxX - minX) * (maxY - minY), 1e-12);
+  const double cell = std::max(std::sqrt(4.0 * area / static_cast<double>(segments)), 4.0 * tolerance);
+  SegmentIndex index(pos, minX, minY, maxX, maxY, cell);
+  std::vector<std::vector<int>> ids(ways.size());
+  for (size_t w = 0; w < ways.size(); ++w)
+    for (size_t k = 1; k < ways[w].size(); ++k)
+      ids[w].push_back(index.add(ways[w][k - 1], ways[w][k], static_cast<int>(w), static_cast<int>(k - 1)));
+  SimplifyStats local;
+  for (size_t w = 0; w < ways.size(); ++w) {
+    const std::vector<int>& pts = ways[w];
+    std::vector<int>& res = out[w];
+    if (pts.empty()) continue;
+    res.push_back(pts[0]);
+    size_t i = 0;
+    while (i + 1 < pts.size()) {
+      size_t j = i + 1;  // the current end: pts[i+1..j-1] are dropped
+      while (j + 1 < pts.size() && removable[static_cast<size_t>(pts[j])]) {
+        const size_t e = j + 1;
+        const Vec2 a = pos[static_cast<size_t>(pts[i])], b = pos[static_cast<size_t>(pts[e])];
+        bool ok = pts[i] != pts[e];
+        for (size_t m = i + 1; ok && m < e; ++m)
+          ok = distanceToSegment(pos[static_cast<size_t>(pts[m])], a, b) <= tolerance;
+        if (ok)
+          ok = !index.blocked(pts[i], pts[e], static_cast<int>(w), static_cast<int>(i), static_cast<int>(e));
+        if (ok && e > i + 1) {
+          const std::vector<int> ring(pts.begin() + static_cast<std::ptrdiff_t>(i),
+                                      pts.begin() + static_cast<std::ptrdiff_t>(e) + 1);
+          ok = !index.pocketHolds(ring, static_cast<int>(w), static_cast<int>(i), static_cast<int>(e));
+        }
+        if (!ok) break;
+        j = e;
+      }
+      if (j > i + 1) {
+        for (size_t k = i; k < j; ++k) index.kill(ids[w][k]);
+        index.add(pts[i], pts[j], static_cast<int>(w), -1);
+        local.removed += static_cast<int>(j - i - 1);
+      }
+      if (removable[static_cast<size_t>(pts[j])] && j + 1 < pts.size()) {
+        ++local.kept;
+        local.keptCarved += carved[static_cast<size_t>(pts[j])] ? 1 : 0;
+      }
+      res.push_back(pts[j]);
+      i = j;
+    }
+  }
+  if (stats) *stats = local;
+  return out;
+}
+
+}  // namespace urbanvec::shrink

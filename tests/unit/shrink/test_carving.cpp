@@ -1,0 +1,160 @@
+// Seam carving (spec §B.10, §H.2 item 6) and the energy of §B.9.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "urbanvec/shrink/energy.hpp"
+#include "urbanvec/shrink/seam_carving.hpp"
+
+namespace urbanvec::shrink {
+namespace {
+
+const float kInf = std::numeric_limits<float>::infinity();
+
+/// Cheapest 8-connected vertical seam cost by brute force over every path.
+double bruteForce(const std::vector<float>& e, int w, int h) {
+  double best = std::numeric_limits<double>::infinity();
+  std::vector<int> path(static_cast<size_t>(h));
+  std::function<void(int, double)> walk = [&](int r, double sum) {
+    if (r == h) {
+      best = std::min(best, sum);
+      return;
+    }
+    for (int dc = -1; dc <= 1; ++dc) {
+      const int c = r == 0 ? dc + 1 : path[static_cast<size_t>(r - 1)] + dc;
+      if (r == 0 && dc > 1) continue;
+      if (c < 0 || c >= w) continue;
+      path[static_cast<size_t>(r)] = c;
+      walk(r + 1, sum + e[static_cast<size_t>(r * w + c)]);
+    }
+  };
+  for (int c0 = 0; c0 < w; ++c0) {
+    path[0] = c0;
+    walk(1, e[static_cast<size_t>(c0)]);
+  }
+  return best;
+}
+
+TEST(SeamCarving, FirstSeamMatchesBruteForceOnRandomImages) {
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> value(0, 255);
+  for (int trial = 0; trial < 40; ++trial) {
+    const int w = 3 + trial % 4, h = 3 + (trial / 4) % 4;
+    std::vector<float> e(static_cast<size_t>(w * h));
+    for (float& v : e) v = static_cast<float>(value(rng));
+    const CarveResult r = carveSeams(e, w, h, 1, 0, SeamOrder::Blocks);
+    ASSERT_EQ(r.seams.size(), 1u);
+    double sum = 0.0;
+    for (int px : r.seams[0].pixels) sum += e[static_cast<size_t>(px)];
+    EXPECT_DOUBLE_EQ(sum, bruteForce(e, w, h)) << "trial " << trial;
+  }
+}
+
+TEST(SeamCarving, SizesConnectivityFrozenPixelsAndAlignment) {
+  const int w = 40, h = 30;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> value(0.0f, 255.0f);
+  std::vector<float> e(static_cast<size_t>(w * h));
+  for (float& v : e) v = value(rng);
+  // A frozen block and a frozen diagonal line.
+  for (int r = 10; r < 14; ++r)
+    for (int c = 5; c < 9; ++c) e[static_cast<size_t>(r * w + c)] = kInf;
+  for (int k = 0; k < 20; ++k) e[static_cast<size_t>((k + 5) * w + k + 15)] = kInf;
+  for (SeamOrder order : {SeamOrder::Blocks, SeamOrder::Interleaved}) {
+    const CarveResult r = carveSeams(e, w, h, 12, 9, order);
+    EXPECT_EQ(r.width, w - 12);
+    EXPECT_EQ(r.height, h - 9);
+    EXPECT_EQ(r.verticalRemoved, 12);
+    EXPECT_EQ(r.horizontalRemoved, 9);
+    for (size_t i = 0; i < e.size(); ++i)
+      if (std::isinf(e[i])) EXPECT_GE(r.finalRow[i], 0) << "frozen pixel " << i << " removed";
+    // Every final cell holds exactly one original pixel; order within rows and columns is kept.
+    std::vector<int> seen(static_cast<size_t>(r.width * r.height), -1);
+    int survivors = 0;
+    for (size_t i = 0; i < e.size(); ++i) {
+      if (r.finalRow[i] < 0) continue;
+      ++survivors;
+      int& slot = seen[static_cast<size_t>(r.finalRow[i] * r.width + r.finalCol[i])];
+      EXPECT_EQ(slot, -1);
+      slot = static_cast<int>(i);
+      EXPECT_LE(r.finalRow[i], static_cast<int>(i) / w);
+      EXPECT_LE(r.finalCol[i], static_cast<int>(i) % w);
+    }
+    EXPECT_EQ(survivors, r.width * r.height);
+    // Blocks order carves columns first, while every original row is still one image row: the pixels of
+    // an original row keep their left-right order. (Across rows seams may differ, so the other axis
+    // and the interleaved order give no such guarantee: the measures count landmark pairs that flip.)
+    for (int row = 0; row < h && order == SeamOrder::Blocks; ++row)
+      for (int c = 0, last = -1; c < w; ++c) {
+        const int fc = r.finalCol[static_cast<size_t>(row * w + c)];
+        if (fc < 0) continue;
+        EXPECT_GT(fc, last);
+        last = fc;
+      }
+    // The first seam crosses the whole image, 8-connected.
+    const CarvedSeam& s = r.seams[0];
+    ASSERT_EQ(static_cast<int>(s.pixels.size()), s.vertical ? h : w);
+    for (size_t k = 1; k < s.pixels.size(); ++k) {
+      const int a = s.pixels[k - 1], b = s.pixels[k];
+      if (s.vertical) {
+        EXPECT_EQ(b / w, a / w + 1);
+        EXPECT_LE(std::abs(b % w - a % w), 1);
+      } else {
+        EXPECT_EQ(b % w, a % w + 1);
+        EXPECT_LE(std::abs(b / w - a / w), 1);
+      }
+    }
+  }
+}
+
+TEST(SeamCarving, AFrozenRowStopsVerticalSeamsAndSaysWhere) {
+  const int w = 10, h = 8;
+  std::vector<float> e(static_cast<size_t>(w * h), 1.0f);
+  for (int c = 0; c < w; ++c) e[static_cast<size_t>(5 * w + c)] = kInf;
+  const CarveResult r = carveSeams(e, w, h, 3, 2, SeamOrder::Blocks);
+  EXPECT_EQ(r.verticalRemoved, 0);
+  EXPECT_EQ(r.horizontalRemoved, 2);
+  EXPECT_EQ(r.verticalBlockedAt / w, 5);
+  EXPECT_EQ(r.horizontalBlockedAt, -2);
+}
+
+TEST(Energy, DistanceTransformIsExact) {
+  std::mt19937 rng(11);
+  std::bernoulli_distribution on(0.04);
+  const int w = 23, h = 17;
+  std::vector<char> f(static_cast<size_t>(w * h));
+  for (char& v : f) v = on(rng) ? 1 : 0;
+  f[5] = 1;
+  const std::vector<double> d = squaredDistanceTransform(f, w, h);
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c) {
+      double best = std::numeric_limits<double>::infinity();
+      for (int r2 = 0; r2 < h; ++r2)
+        for (int c2 = 0; c2 < w; ++c2)
+          if (f[static_cast<size_t>(r2 * w + c2)])
+            best = std::min(best, double((r - r2) * (r - r2) + (c - c2) * (c - c2)));
+      EXPECT_DOUBLE_EQ(d[static_cast<size_t>(r * w + c)], best);
+    }
+}
+
+TEST(Energy, HighNearTheSkeletonLowInEmptyAreasInfiniteWhenFrozen) {
+  SkeletonRaster raster;
+  raster.frame.width = 20;
+  raster.frame.height = 5;
+  raster.ink.assign(100, 0.0f);
+  raster.freezeOwner.assign(100, kNotFrozen);
+  for (int r = 0; r < 5; ++r) raster.ink[static_cast<size_t>(r * 20)] = 255.0f;  // a street along column 0
+  raster.freezeOwner[0] = kFrozenStreetNode;
+  const std::vector<float> e = seamEnergy(raster, 0.5);
+  EXPECT_TRUE(std::isinf(e[0]));
+  EXPECT_FLOAT_EQ(e[20], 255.0f);  // ink 255 and distance 0
+  EXPECT_FLOAT_EQ(e[39], 0.0f);    // farthest pixel: no ink, inverted distance 0
+  for (int c = 1; c < 19; ++c) EXPECT_GT(e[static_cast<size_t>(20 + c)], e[static_cast<size_t>(20 + c + 1)]);
+  const std::vector<float> grayOnly = seamEnergy(raster, 1.0);
+  EXPECT_FLOAT_EQ(grayOnly[25], 0.0f);
+}
+
+}  // namespace
+}  // namespace urbanvec::shrink

@@ -1,0 +1,82 @@
+// Back to vector without new crossings (spec §B.11; issue 19 "topology: no new crossings"): densified
+// ways, crossing-safe simplification, and the way separation of seam carving.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "urbanvec/shrink/dense_ways.hpp"
+#include "urbanvec/shrink/seam_carving.hpp"
+
+namespace urbanvec::shrink {
+namespace {
+
+TEST(DenseWays, DensifySharesTheSyntheticPointsOfASharedSegment) {
+  std::vector<Vec2> pos{{0, 0}, {10, 0}, {10, 5}};
+  std::vector<Vec2> shadow = pos;
+  const auto dense = densifyWays({{0, 1}, {1, 0, 2}}, 1.0, pos, shadow);
+  ASSERT_EQ(dense[0].size(), 11u);  // 9 synthetic points, 1 m apart
+  EXPECT_EQ(pos.size(), 3u + 9u + 11u);
+  // The second way runs 1 -> 0 over the same points, reversed.
+  for (size_t i = 0; i < 11; ++i) EXPECT_EQ(dense[1][i], dense[0][10 - i]);
+  for (size_t i = 1; i < dense[1].size(); ++i)
+    EXPECT_LE(distance(pos[static_cast<size_t>(dense[1][i])], pos[static_cast<size_t>(dense[1][i - 1])]),
+              1.0 + 1e-12);
+}
+
+TEST(DenseWays, SimplifyKeepsPointsWhoseShortcutWouldCrossAnotherWay) {
+  // Way 0: a bump from (0,0) over (5,2) to (10,0) of synthetic points; way 1: a short street at
+  // y = 1 under the bump. Dropping the bump's top points would cross way 1; a straight stretch
+  // elsewhere is simplified away.
+  std::vector<Vec2> pos{{0, 0}, {10, 0}, {4, 1}, {6, 1}, {2.5, 1.0}, {5, 2}, {7.5, 1.0}, {20, 0}, {15, 0}};
+  const std::vector<std::vector<int>> ways{{0, 4, 5, 6, 1, 8, 7}, {2, 3}};
+  std::vector<char> removable(pos.size(), 0), carved(pos.size(), 0);
+  removable[4] = removable[5] = removable[6] = removable[8] = 1;
+  SimplifyStats stats;
+  const auto out = simplifyWithoutCrossings(ways, pos, removable, carved, 5.0, &stats);
+  EXPECT_EQ(out[1], (std::vector<int>{2, 3}));
+  EXPECT_EQ(out[0].front(), 0);
+  EXPECT_EQ(out[0].back(), 7);
+  EXPECT_NE(std::find(out[0].begin(), out[0].end(), 5), out[0].end()) << "the bump's top must stay";
+  EXPECT_EQ(std::find(out[0].begin(), out[0].end(), 8), out[0].end()) << "the straight stretch is simplified";
+  EXPECT_EQ(stats.removed, static_cast<int>(ways[0].size() - out[0].size()));
+  // Without the other way the whole bump goes (tolerance 5 m); the other way inside the pocket of the
+  // bump (no crossing, but it would change sides) keeps it in the first case.
+  const auto alone = simplifyWithoutCrossings({ways[0]}, pos, removable, carved, 5.0);
+  EXPECT_EQ(alone[0], (std::vector<int>{0, 1, 7}));
+}
+
+TEST(DenseWays, SeamsNeverRemoveAPixelBetweenTwoWaysWithinAPixel) {
+  // Two vertical streets in adjacent columns 3 and 4 of a 10x6 image, zero energy everywhere: without
+  // separation the cheapest seams may take either; with it neither column (nor its neighbours that
+  // touch the other way) can be removed, so seams go elsewhere and both ways keep their gap.
+  const int w = 10, h = 6;
+  std::vector<float> energy(static_cast<size_t>(w * h), 0.0f);
+  std::vector<int> labels(energy.size(), -1);
+  for (int r = 0; r < h; ++r)
+    labels[static_cast<size_t>(r * w + 3)] = 0, labels[static_cast<size_t>(r * w + 4)] = 1;
+  const std::vector<int> pieceWay{0, 1};
+  const CarveResult c = carveSeams(energy, w, h, 6, 0, SeamOrder::Blocks, {}, &labels, &pieceWay);
+  EXPECT_EQ(c.verticalRemoved, 6);
+  for (int r = 0; r < h; ++r) {
+    EXPECT_GE(c.finalRow[static_cast<size_t>(r * w + 3)], 0);
+    EXPECT_GE(c.finalRow[static_cast<size_t>(r * w + 4)], 0);
+    EXPECT_EQ(c.finalCol[static_cast<size_t>(r * w + 4)], c.finalCol[static_cast<size_t>(r * w + 3)] + 1);
+  }
+  EXPECT_EQ(c.separationFrozen, static_cast<size_t>(2 * h));
+  // Two ways two columns apart: the gap column may go, but then they are neighbours and stay so.
+  std::vector<int> apart(energy.size(), -1);
+  for (int r = 0; r < h; ++r)
+    apart[static_cast<size_t>(r * w + 2)] = 0, apart[static_cast<size_t>(r * w + 4)] = 1;
+  std::vector<float> cheapGap = energy;
+  for (int r = 0; r < h; ++r) cheapGap[static_cast<size_t>(r * w + 3)] = -1.0f;  // the gap goes first
+  const CarveResult d = carveSeams(cheapGap, w, h, 8, 0, SeamOrder::Blocks, {}, &apart, &pieceWay);
+  for (int r = 0; r < h; ++r) {
+    EXPECT_LT(d.finalRow[static_cast<size_t>(r * w + 3)], 0);
+    EXPECT_GE(d.finalRow[static_cast<size_t>(r * w + 2)], 0);
+    EXPECT_GE(d.finalRow[static_cast<size_t>(r * w + 4)], 0);
+  }
+  EXPECT_EQ(d.verticalRemoved, 8 - 0 - (w - 2 - 8 < 0 ? 2 : 0));
+}
+
+}  // namespace
+}  // namespace urbanvec::shrink
