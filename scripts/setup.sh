@@ -9,9 +9,7 @@ PACKAGES=(
   nlohmann-json3-dev libgtest-dev googletest sqlite3 python3 python3-numpy jq
   libosmium2-dev libexpat1-dev zlib1g-dev libbz2-dev python3-matplotlib
   qgis python3-qgis qgis-providers grass-core xvfb xauth zip clang-format
-  python3-osmnx
-  python3-distributed
-  python3-matplotlib
+  python3-osmnx python3-distributed
 )
 
 missing=()
