@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Builds messy cadastral CAD drawings (DXF) and their truth from real cadastre polygons (issue 17).
 
-Input: the Spanish cadastre sample (parcel.gpkg, cons.gpkg of ../shared/data/real/catastro). Output:
+Input: the Spanish cadastre sample (parcel.gpkg, cons.gpkg in sample_data/sources/catastro). Output:
   <out>.dxf        2-point LINE segments on layers BLOCKS, PARCELS, BUILDINGS and TEXT labels (number of
                    floors in Roman numerals, e.g. III, -I+III, II+TZA) on layer FLOORS;
   <out>_truth.gpkg layers blocks (parcels dissolved by the first 5 characters of the reference, one
@@ -291,7 +291,8 @@ def main():
     ap.add_argument("--bbox", type=float, nargs=4, metavar=("XMIN", "YMIN", "XMAX", "YMAX"),
                     help="keep parcels/parts whose centroid is inside (a small extract for tests)")
     here = os.path.dirname(os.path.abspath(__file__))
-    ap.add_argument("--data", default=os.path.join(here, "..", "..", "..", "shared", "data", "real", "catastro"))
+    ap.add_argument("--data", default=os.path.join(here, "..", "..", "sample_data", "sources", "catastro"),
+                    help="folder with parcel.gpkg and cons.gpkg (default: the copy in sample_data/sources/catastro)")
     ap.add_argument("--replicate", type=int, default=1,
                     help="tile the drawing k x k times (offset by its extent + 50 m), for speed benches")
     args = ap.parse_args()
