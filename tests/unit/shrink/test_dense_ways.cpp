@@ -45,6 +45,33 @@ TEST(DenseWays, SimplifyKeepsPointsWhoseShortcutWouldCrossAnotherWay) {
   EXPECT_EQ(alone[0], (std::vector<int>{0, 1, 7}));
 }
 
+TEST(DenseWays, StraighteningMovesThatCrossOrJumpAnotherWayAreReverted) {
+  // Way 0: a bent street (0,0)-(5,3)-(10,0); way 1: a short street at y = 1..2 under the bend, way 2:
+  // a street far away that moves and crosses nothing. Straightening way 0 (its bend point to (5,0))
+  // would pass over way 1: way 0 keeps its carved line; way 2 keeps its move.
+  const std::vector<Vec2> from{{0, 0}, {5, 3}, {10, 0}, {5, 1}, {5, 2}, {0, 10}, {5, 13}, {10, 10}};
+  std::vector<Vec2> to = from;
+  to[1] = {5, 0};
+  to[6] = {5, 10};
+  const std::vector<std::vector<int>> ways{{0, 1, 2}, {3, 4}, {5, 6, 7}};
+  EXPECT_EQ(revertCrossingMoves(ways, from, to), 1);
+  EXPECT_EQ(to[1].y, 3.0);
+  EXPECT_EQ(to[6].y, 10.0);
+  // Way 1 entirely inside the swept triangle (no crossing with the final line, but it changes sides).
+  std::vector<Vec2> from2 = from, to2;
+  from2[3] = {5, 1.5};
+  from2[4] = {5.5, 1.5};
+  to2 = from2;
+  to2[1] = {5, 1};
+  EXPECT_EQ(revertCrossingMoves(ways, from2, to2), 1);
+  EXPECT_EQ(to2[1].y, 3.0);
+  // Straightening that stays above way 1 is kept.
+  std::vector<Vec2> to3 = from;
+  to3[1] = {5, 2.5};
+  EXPECT_EQ(revertCrossingMoves(ways, from, to3), 0);
+  EXPECT_EQ(to3[1].y, 2.5);
+}
+
 TEST(DenseWays, SeamsNeverRemoveAPixelBetweenTwoWaysWithinAPixel) {
   // Two vertical streets in adjacent columns 3 and 4 of a 10x6 image, zero energy everywhere: without
   // separation the cheapest seams may take either; with it neither column (nor its neighbours that
