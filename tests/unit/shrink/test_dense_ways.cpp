@@ -105,5 +105,27 @@ TEST(DenseWays, SeamsNeverRemoveAPixelBetweenTwoWaysWithinAPixel) {
   EXPECT_EQ(d.verticalRemoved, 8 - 0 - (w - 2 - 8 < 0 ? 2 : 0));
 }
 
+TEST(DenseWays, AWayCarriedAlongBySeamsIsKeptApartFromTheWayItReaches) {
+  // Way 0 in column 2, way 1 in column 4, column 3 empty; column 4 is the cheapest, then column 3. The
+  // first seam takes column 4: way 1 collapses onto column 3, now next to way 0, so column 3 must not
+  // go (it would put both ways in one pixel of column 2); the second seam goes elsewhere.
+  const int w = 8, h = 3;
+  std::vector<float> energy(static_cast<size_t>(w * h), 0.0f);
+  std::vector<int> labels(energy.size(), -1);
+  for (int r = 0; r < h; ++r) {
+    labels[static_cast<size_t>(r * w + 2)] = 0, labels[static_cast<size_t>(r * w + 4)] = 1;
+    energy[static_cast<size_t>(r * w + 4)] = -3.0f, energy[static_cast<size_t>(r * w + 3)] = -2.0f;
+  }
+  const std::vector<int> pieceWay{0, 1};
+  const CarveResult c = carveSeams(energy, w, h, 2, 0, SeamOrder::Blocks, {}, &labels, &pieceWay);
+  EXPECT_EQ(c.verticalRemoved, 2);
+  for (int r = 0; r < h; ++r) {
+    EXPECT_LT(c.finalRow[static_cast<size_t>(r * w + 4)], 0);
+    EXPECT_GE(c.finalRow[static_cast<size_t>(r * w + 3)], 0) << "the pixel holding way 1 now";
+    EXPECT_GE(c.finalRow[static_cast<size_t>(r * w + 2)], 0);
+    EXPECT_EQ(c.finalCol[static_cast<size_t>(r * w + 3)], c.finalCol[static_cast<size_t>(r * w + 2)] + 1);
+  }
+}
+
 }  // namespace
 }  // namespace urbanvec::shrink
