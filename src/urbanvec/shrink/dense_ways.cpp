@@ -132,7 +132,7 @@ class SegmentIndex {
 
   /// True when segment a-b shares a point with a live segment other than way `way`'s dense segments
   /// k in [k0, k1), apart from a shared end point id.
-  bool blocked(int a, int b, int way, int k0, int k1) {
+  bool blocked(int a, int b, int way, int k0, int k1, bool sameSegmentOk = false) {
     ++query_;
     const Vec2 p = pos_[static_cast<size_t>(a)], q = pos_[static_cast<size_t>(b)];
     bool hit = false;
@@ -151,7 +151,7 @@ class SegmentIndex {
           const Vec2 o = pos_[static_cast<size_t>(other)], m = pos_[static_cast<size_t>(mine)],
                      sp = pos_[static_cast<size_t>(shared)];
           if (other != mine && orient(sp, m, o) == 0 && dot(m - sp, o - sp) > 0) hit = true;
-          if (other == mine) hit = true;  // the same segment twice
+          if (other == mine && !sameSegmentOk) hit = true;  // the same segment twice
           if (hit) return;
           continue;
         }
@@ -252,6 +252,61 @@ std::vector<std::vector<int>> simplifyWithoutCrossings(const std::vector<std::ve
   }
   if (stats) *stats = local;
   return out;
+}
+
+int revertCrossingMoves(const std::vector<std::vector<int>>& ways, const std::vector<Vec2>& from,
+                        std::vector<Vec2>& to) {
+  const size_t n = to.size();
+  // Positions: ids < n are the moved points, n + id the same point before the move (for sweep rings).
+  std::vector<Vec2> pos(2 * n);
+  std::vector<std::vector<int>> live(ways.size());  // finite points, no repeats
+  std::vector<char> refused(ways.size(), 0);
+  int refusals = 0;
+  for (bool changed = true; changed;) {
+    changed = false;
+    double minX = 1e300, minY = 1e300, maxX = -1e300, maxY = -1e300;
+    size_t segments = 0;
+    for (size_t i = 0; i < n; ++i) pos[i] = to[i], pos[n + i] = from[i];
+    for (size_t w = 0; w < ways.size(); ++w) {
+      live[w].clear();
+      for (int id : ways[w]) {
+        const Vec2 p = to[static_cast<size_t>(id)];
+        if (!std::isfinite(p.x) || !std::isfinite(p.y)) continue;
+        if (!live[w].empty() && (live[w].back() == id || to[static_cast<size_t>(live[w].back())] == p))
+          continue;
+        live[w].push_back(id);
+        minX = std::min(minX, p.x), maxX = std::max(maxX, p.x), minY = std::min(minY, p.y),
+        maxY = std::max(maxY, p.y);
+      }
+      segments += live[w].size();
+    }
+    if (segments == 0) break;
+    const double area = std::max((maxX - minX) * (maxY - minY), 1e-12);
+    SegmentIndex index(pos, minX, minY, maxX, maxY, std::sqrt(4.0 * area / static_cast<double>(segments)));
+    constexpr int kAll = 1 << 30;
+    for (size_t w = 0; w < ways.size(); ++w)
+      for (size_t k = 1; k < live[w].size(); ++k)
+        index.add(live[w][k - 1], live[w][k], static_cast<int>(w), static_cast<int>(k - 1));
+    for (size_t w = 0; w < ways.size(); ++w) {
+      const std::vector<int>& pts = live[w];
+      auto moved = [&](int id) { return !(to[static_cast<size_t>(id)] == from[static_cast<size_t>(id)]); };
+      bool bad = false;
+      for (size_t k = 1; !bad && k < pts.size(); ++k) {
+        const int a = pts[k - 1], b = pts[k];
+        if (!moved(a) && !moved(b)) continue;
+        bad = index.blocked(a, b, static_cast<int>(w), 0, kAll, true) ||
+              index.pocketHolds({a, b, b + static_cast<int>(n), a + static_cast<int>(n)}, static_cast<int>(w),
+                                0, kAll);
+      }
+      if (!bad) continue;
+      // Back to the carved positions; the ways sharing these points are checked again next round.
+      for (int id : ways[w]) to[static_cast<size_t>(id)] = from[static_cast<size_t>(id)];
+      refusals += refused[w] ? 0 : 1;
+      refused[w] = 1;
+      changed = true;
+    }
+  }
+  return refusals;
 }
 
 }  // namespace urbanvec::shrink

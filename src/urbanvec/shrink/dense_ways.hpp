@@ -84,4 +84,12 @@ std::vector<std::vector<int>> simplifyWithoutCrossings(const std::vector<std::ve
                                                        const std::vector<char>& carved, double tolerance,
                                                        SimplifyStats* stats = nullptr);
 
+/// Crossing-safe post-move (for §B.11 straightening): `from` are crossing-free positions, `to` the
+/// same points moved (non-finite = dropped). A way with a moved segment that intersects a segment of
+/// another way (other than at a shared point or along a shared segment), or whose sweep from its `from`
+/// to its `to` position passes over another way's point (that way would change sides), gets all its
+/// points back to `from`; repeated until no way is refused. Returns the number of ways refused.
+int revertCrossingMoves(const std::vector<std::vector<int>>& ways, const std::vector<Vec2>& from,
+                        std::vector<Vec2>& to);
+
 }  // namespace urbanvec::shrink

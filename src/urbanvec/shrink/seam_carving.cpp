@@ -108,6 +108,7 @@ CarveResult carveSeams(const std::vector<float>& energy, int width, int height, 
   CarveResult result;
   std::vector<int> label;
   if (wayLabels) label = *wayLabels;
+  std::vector<int> relabelled;  // per line of the current seam: column of the pixel that took a way, else -1
   const size_t n = static_cast<size_t>(width) * static_cast<size_t>(height);
   Work work;
   work.energy = energy;
@@ -166,6 +167,7 @@ CarveResult carveSeams(const std::vector<float>& energy, int width, int height, 
     }
     CarvedSeam seam;
     seam.vertical = doVertical;
+    if (!label.empty()) relabelled.assign(static_cast<size_t>(work.rows), -1);
     seam.pixels.resize(static_cast<size_t>(work.rows));
     for (int r = 0; r < work.rows; ++r) {
       const int c = work.seam[static_cast<size_t>(r)];
@@ -179,6 +181,8 @@ CarveResult carveSeams(const std::vector<float>& energy, int width, int height, 
         int& onto = label[static_cast<size_t>(idx[ontoLower ? c - 1 : c + 1])];
         const int mine = label[static_cast<size_t>(removed)];
         if (mine != -1 && !sameWay(onto, mine)) {
+          // The onto pixel's new way must be kept apart from its other neighbours too (below).
+          relabelled[static_cast<size_t>(r)] = ontoLower ? c - 1 : c;
           onto = onto == -1 ? mine : -2;
           if (onto == -2) {
             float& eo = e[ontoLower ? c - 1 : c + 1];
@@ -204,6 +208,17 @@ CarveResult carveSeams(const std::vector<float>& energy, int width, int height, 
           if (r + 1 < work.rows) separate(p, p + work.stride + 1), separate(p + 1, p + work.stride);
           if (r > 0) separate(p, p - work.stride + 1), separate(p + 1, p - work.stride);
         }
+        // A pixel that took over a removed pixel's way (new column after the shift) against its 8
+        // neighbours: without this, a way carried along by successive seams meets another way unseen.
+        const int o = relabelled[static_cast<size_t>(r)];
+        if (o < 0) continue;
+        const size_t q = row + static_cast<size_t>(o);
+        for (int dr = -1; dr <= 1; ++dr)
+          for (int dc = -1; dc <= 1; ++dc) {
+            const int rr = r + dr, cc = o + dc;
+            if ((dr == 0 && dc == 0) || rr < 0 || rr >= work.rows || cc < 0 || cc >= work.cols) continue;
+            separate(q, static_cast<size_t>(rr) * work.stride + static_cast<size_t>(cc));
+          }
       }
     }
     result.seams.push_back(std::move(seam));

@@ -416,8 +416,12 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
   if (options.post.straighten) {
     std::vector<char> fixed = pinned;
     fixed.resize(nPoints, 0);
+    const std::vector<Vec2> carvedPos = after;
     put("straightened_ways", straightenWays(wayPoints, pointBefore, after, fixed,
                                             options.post.straightTolerance, options.post.straightenRounds));
+    // Straightening moves points after carving: a way whose straightened line would cross another way
+    // (or pass over another way's point) keeps its carved line.
+    put("straighten_refused", revertCrossingMoves(wayPoints, carvedPos, after));
   }
   for (const std::vector<int>& points : wayPoints) {
     std::vector<int> kept;

@@ -45,6 +45,33 @@ TEST(DenseWays, SimplifyKeepsPointsWhoseShortcutWouldCrossAnotherWay) {
   EXPECT_EQ(alone[0], (std::vector<int>{0, 1, 7}));
 }
 
+TEST(DenseWays, StraighteningMovesThatCrossOrJumpAnotherWayAreReverted) {
+  // Way 0: a bent street (0,0)-(5,3)-(10,0); way 1: a short street at y = 1..2 under the bend, way 2:
+  // a street far away that moves and crosses nothing. Straightening way 0 (its bend point to (5,0))
+  // would pass over way 1: way 0 keeps its carved line; way 2 keeps its move.
+  const std::vector<Vec2> from{{0, 0}, {5, 3}, {10, 0}, {5, 1}, {5, 2}, {0, 10}, {5, 13}, {10, 10}};
+  std::vector<Vec2> to = from;
+  to[1] = {5, 0};
+  to[6] = {5, 10};
+  const std::vector<std::vector<int>> ways{{0, 1, 2}, {3, 4}, {5, 6, 7}};
+  EXPECT_EQ(revertCrossingMoves(ways, from, to), 1);
+  EXPECT_EQ(to[1].y, 3.0);
+  EXPECT_EQ(to[6].y, 10.0);
+  // Way 1 entirely inside the swept triangle (no crossing with the final line, but it changes sides).
+  std::vector<Vec2> from2 = from, to2;
+  from2[3] = {5, 1.5};
+  from2[4] = {5.5, 1.5};
+  to2 = from2;
+  to2[1] = {5, 1};
+  EXPECT_EQ(revertCrossingMoves(ways, from2, to2), 1);
+  EXPECT_EQ(to2[1].y, 3.0);
+  // Straightening that stays above way 1 is kept.
+  std::vector<Vec2> to3 = from;
+  to3[1] = {5, 2.5};
+  EXPECT_EQ(revertCrossingMoves(ways, from, to3), 0);
+  EXPECT_EQ(to3[1].y, 2.5);
+}
+
 TEST(DenseWays, SeamsNeverRemoveAPixelBetweenTwoWaysWithinAPixel) {
   // Two vertical streets in adjacent columns 3 and 4 of a 10x6 image, zero energy everywhere: without
   // separation the cheapest seams may take either; with it neither column (nor its neighbours that
@@ -76,6 +103,28 @@ TEST(DenseWays, SeamsNeverRemoveAPixelBetweenTwoWaysWithinAPixel) {
     EXPECT_GE(d.finalRow[static_cast<size_t>(r * w + 4)], 0);
   }
   EXPECT_EQ(d.verticalRemoved, 8 - 0 - (w - 2 - 8 < 0 ? 2 : 0));
+}
+
+TEST(DenseWays, AWayCarriedAlongBySeamsIsKeptApartFromTheWayItReaches) {
+  // Way 0 in column 2, way 1 in column 4, column 3 empty; column 4 is the cheapest, then column 3. The
+  // first seam takes column 4: way 1 collapses onto column 3, now next to way 0, so column 3 must not
+  // go (it would put both ways in one pixel of column 2); the second seam goes elsewhere.
+  const int w = 8, h = 3;
+  std::vector<float> energy(static_cast<size_t>(w * h), 0.0f);
+  std::vector<int> labels(energy.size(), -1);
+  for (int r = 0; r < h; ++r) {
+    labels[static_cast<size_t>(r * w + 2)] = 0, labels[static_cast<size_t>(r * w + 4)] = 1;
+    energy[static_cast<size_t>(r * w + 4)] = -3.0f, energy[static_cast<size_t>(r * w + 3)] = -2.0f;
+  }
+  const std::vector<int> pieceWay{0, 1};
+  const CarveResult c = carveSeams(energy, w, h, 2, 0, SeamOrder::Blocks, {}, &labels, &pieceWay);
+  EXPECT_EQ(c.verticalRemoved, 2);
+  for (int r = 0; r < h; ++r) {
+    EXPECT_LT(c.finalRow[static_cast<size_t>(r * w + 4)], 0);
+    EXPECT_GE(c.finalRow[static_cast<size_t>(r * w + 3)], 0) << "the pixel holding way 1 now";
+    EXPECT_GE(c.finalRow[static_cast<size_t>(r * w + 2)], 0);
+    EXPECT_EQ(c.finalCol[static_cast<size_t>(r * w + 3)], c.finalCol[static_cast<size_t>(r * w + 2)] + 1);
+  }
 }
 
 }  // namespace
