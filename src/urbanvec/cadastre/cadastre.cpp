@@ -134,23 +134,28 @@ CadastreResult structureCadastre(const std::vector<CadLine>& lines, const std::v
   // Blocks in order of their components (deterministic: by lowest node id).
   std::vector<Polygon> blockAreas;
   std::vector<int> blockAreaOwner;
+  // Per component: whether it has a bounded face, and the components nested in one of its faces (in
+  // increasing order), so that blocks and their courtyards are found in linear time.
+  std::vector<char> componentHasFace(bc.outlines.size(), 0);
+  for (int fc : bc.faceComponent) componentHasFace[static_cast<size_t>(fc)] = 1;
+  std::vector<std::vector<size_t>> nestedIn(bc.outlines.size());
+  for (size_t j = 0; j < bc.outlines.size(); ++j) {
+    const int pf = bc.parentFace[j];
+    if (pf >= 0) nestedIn[static_cast<size_t>(bc.faceComponent[static_cast<size_t>(pf)])].push_back(j);
+  }
   for (size_t k = 0; k < bc.outlines.size(); ++k) {
     if (!isBlock(k) || bc.outlines[k].size() < 4) continue;
-    bool hasFace = false;
-    for (int fc : bc.faceComponent) hasFace = hasFace || fc == static_cast<int>(k);
-    if (!hasFace) continue;  // a pre-block without a circuit is eliminated
+    if (!componentHasFace[k]) continue;  // a pre-block without a circuit is eliminated
     blockOfComponent[k] = static_cast<int>(result.blocks.size());
     BlockOut b;
     b.preBlock = preBlockOfComponent[k];
     Polygon outline{bc.outlines[k], {}};
-    for (size_t j = 0; j < bc.outlines.size(); ++j) {
-      const int pf = bc.parentFace[j];
-      if (pf >= 0 && bc.faceComponent[static_cast<size_t>(pf)] == static_cast<int>(k) && !enclosedBlock[j]) {
-        Ring hole = bc.outlines[j];
-        std::reverse(hole.begin(), hole.end());
-        outline.holes.push_back(std::move(hole));
-        ++b.courtyards;
-      }
+    for (size_t j : nestedIn[k]) {
+      if (enclosedBlock[j]) continue;
+      Ring hole = bc.outlines[j];
+      std::reverse(hole.begin(), hole.end());
+      outline.holes.push_back(std::move(hole));
+      ++b.courtyards;
     }
     b.shape = validParts(outline, o.minFaceArea);
     result.blocks.push_back(std::move(b));
