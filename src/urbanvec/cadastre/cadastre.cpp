@@ -116,17 +116,16 @@ CadastreResult structureCadastre(const std::vector<CadLine>& lines, const std::v
           if (d > o.collapsingThreshold) enclosedBlock[static_cast<size_t>(k)] = 1;
         });
       }
-    }
-    // A number-of-floors label inside the ring also makes it a block (a building fills it).
-    for (int k : candidates) {
-      const Ring& ring = bc.outlines[static_cast<size_t>(k)];
-      double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-      for (const Vec2& p : ring)
-        x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
-      for (const CadLabel& l : labels)
-        if (!enclosedBlock[static_cast<size_t>(k)] && l.p.x >= x0 && l.p.x <= x1 && l.p.y >= y0 &&
-            l.p.y <= y1 && pointInRing(l.p, ring) && parseFloorLabel(l.text).above > 0)
-          enclosedBlock[static_cast<size_t>(k)] = 1;
+      // A number-of-floors label inside the ring also makes it a block (a building fills it).
+      for (const CadLabel& l : labels) {
+        int floors = -1;  // parsed once, when the label falls in a candidate ring
+        grid.query(l.p.x, l.p.y, l.p.x, l.p.y, [&](int k) {
+          if (enclosedBlock[static_cast<size_t>(k)] || !pointInRing(l.p, bc.outlines[static_cast<size_t>(k)]))
+            return;
+          if (floors < 0) floors = parseFloorLabel(l.text).above > 0 ? 1 : 0;
+          if (floors == 1) enclosedBlock[static_cast<size_t>(k)] = 1;
+        });
+      }
     }
     for (char e : enclosedBlock) rep.enclosedBlocks += e ? 1 : 0;
   }
