@@ -3,6 +3,8 @@
 #include "urbanvec/cadastre/cadastre.hpp"
 
 #include <algorithm>
+#include <exception>
+#include <thread>
 
 #include "urbanvec/cadastre/buildings.hpp"
 #include "urbanvec/cadastre/circuits.hpp"
@@ -187,28 +189,62 @@ CadastreResult structureCadastre(const std::vector<CadLine>& lines, const std::v
   const BlockLocator locator(blockAreas, blockAreaOwner);
   reportProgress(progress, 0.5, "parcels");
 
-  // Parcels (beyond the thesis): circuits of block + lot linework inside the blocks.
-  {
+  // Parcels (beyond the thesis): circuits of block + lot linework inside the blocks. Independent of the
+  // building graph below, so with two or more threads both are built side by side; each writes only its
+  // own variables, so the output does not depend on the thread count.
+  auto parcels = [&](const Progress& parcelProgress) {
     GraphStats pg;
-    const PlanarGraph g = structuredGraph(lw, kBlockLayer | kLotLayer, o.blockThreshold, pg,
-                                          subProgress(progress, 0.5, 0.65), tolerance);
+    const PlanarGraph g =
+        structuredGraph(lw, kBlockLayer | kLotLayer, o.blockThreshold, pg, parcelProgress, tolerance);
     const Circuits pc = findCircuits(g, o.minFaceArea, o.sliverWidthShare * o.collapsingThreshold);
     std::size_t outside = 0;
     for (Localised& l : localise(pc.faces, locator, o.minFaceArea, outside))
       result.parcels.push_back({std::move(l.shape), l.block});
-    rep.parcels = result.parcels.size();
+  };
+  const unsigned threads =
+      o.threads > 0 ? static_cast<unsigned>(o.threads) : std::max(1U, std::thread::hardware_concurrency());
+  std::thread parcelWorker;
+  std::exception_ptr parcelError;
+  if (threads >= 2) {
+    parcelWorker = std::thread([&] {
+      try {
+        parcels(Progress{});  // progress is reported by the building graph on this thread
+      } catch (...) {
+        parcelError = std::current_exception();
+      }
+    });
+  } else {
+    parcels(subProgress(progress, 0.5, 0.65));
   }
+  auto joinParcels = [&] {
+    if (parcelWorker.joinable()) parcelWorker.join();
+  };
 
   // §A.7 buildings: lot and building layers together with the block layer, circuits again.
   GraphStats bg;
-  const PlanarGraph g = structuredGraph(lw, kBlockLayer | kLotLayer | kBuildingLayer, o.blockThreshold, bg,
-                                        subProgress(progress, 0.65, 0.85), tolerance);
+  PlanarGraph g;
+  try {
+    g = structuredGraph(lw, kBlockLayer | kLotLayer | kBuildingLayer, o.blockThreshold, bg,
+                        subProgress(progress, 0.65, 0.85), tolerance);
+  } catch (...) {
+    joinParcels();
+    throw;
+  }
   addGraphStats(rep, bg);
-  const Circuits ec = findCircuits(g, o.minFaceArea, o.sliverWidthShare * o.collapsingThreshold);
-  rep.slivers += ec.slivers;
+  Circuits ec;
   std::vector<Localised> outsideFaces;
-  std::vector<Localised> elements =
-      localise(ec.faces, locator, o.minFaceArea, rep.facesOutsideBlocks, &outsideFaces);
+  std::vector<Localised> elements;
+  try {
+    ec = findCircuits(g, o.minFaceArea, o.sliverWidthShare * o.collapsingThreshold);
+    elements = localise(ec.faces, locator, o.minFaceArea, rep.facesOutsideBlocks, &outsideFaces);
+  } catch (...) {
+    joinParcels();
+    throw;
+  }
+  joinParcels();
+  if (parcelError) std::rethrow_exception(parcelError);
+  rep.parcels = result.parcels.size();
+  rep.slivers += ec.slivers;
   const std::size_t inBlocks = elements.size();
   for (Localised& l : outsideFaces) elements.push_back(std::move(l));
   reportProgress(progress, 0.9, "heights");
