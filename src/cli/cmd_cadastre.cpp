@@ -125,6 +125,12 @@ app::CommandSpec spec() {
           .atLeast(0));
   o.push_back(
       option("-seed", ValueType::Integer, "<n>", "Seed of the height offsets.").byDefault("0").atLeast(0));
+  o.push_back(option("-threads", ValueType::Integer, "<n>",
+                     "Worker threads (0 = all cores): the parcel and building graphs are built side by side; "
+                     "the output does not depend on it.")
+                  .byDefault("0")
+                  .atLeast(0)
+                  .isAdvanced());
   o.push_back(option("-obj", ValueType::String, "<file.obj>", "Also write the LoD1 prisms as Wavefront OBJ.")
                   .withRole(Role::OutputFile));
   o.push_back(
@@ -229,6 +235,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   options.upperFloorHeight = args.real("-upper-floor");
   options.heightOffset = args.real("-height-offset");
   options.seed = static_cast<std::uint64_t>(args.integer("-seed"));
+  options.threads = static_cast<int>(args.integer("-threads"));
   const std::vector<std::string> blockNames = args.values("-block-layer");
   if (blockNames.empty())
     throw invalidOption("-block-layer is required: name the layer(s) drawing the blocks");

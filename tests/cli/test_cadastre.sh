@@ -65,8 +65,14 @@ for o in d["CityObjects"].values():
     assert o["type"] == "Building" and o["geometry"][0]["lod"] == "1"
     assert o["attributes"]["measuredHeight"] > 0
 PY
-# Deterministic: the same drawing gives byte-identical 3D outputs.
-run_cmd cadastre -q "${LAYERS[@]}" -a_srs EPSG:32628 "$WORK/L0.dxf" "$WORK/l0b.gpkg" -obj "$WORK/l0b.obj" -cityjson "$WORK/l0b.city.json"
+# Deterministic: the same drawing gives byte-identical outputs, with two threads (the parcel and
+# building graphs side by side) as with one.
+run_cmd cadastre -q -threads 2 "${LAYERS[@]}" -a_srs EPSG:32628 "$WORK/L0.dxf" "$WORK/l0b.gpkg" -obj "$WORK/l0b.obj" -cityjson "$WORK/l0b.city.json"
+run_cmd cadastre -q -threads 1 "${LAYERS[@]}" -a_srs EPSG:32628 "$WORK/L0.dxf" "$WORK/l0c.gpkg" -obj "$WORK/l0c.obj" -cityjson "$WORK/l0c.city.json"
+cmp -s "$WORK/l0b.obj" "$WORK/l0c.obj" || fail "OBJ differs between -threads 2 and 1"
+cmp -s "$WORK/l0b.city.json" "$WORK/l0c.city.json" || fail "CityJSON differs between -threads 2 and 1"
+cmp -s <(ogrinfo -ro -al "$WORK/l0b.gpkg" | sed 1,2d) <(ogrinfo -ro -al "$WORK/l0c.gpkg" | sed 1,2d) ||
+  fail "GeoPackage differs between -threads 2 and 1"
 cmp -s "$WORK/l0.obj" "$WORK/l0b.obj" || fail "OBJ differs between runs"
 cmp -s "$WORK/l0.city.json" "$WORK/l0b.city.json" || fail "CityJSON differs between runs"
 

@@ -3,6 +3,8 @@
 #include "urbanvec/cadastre/cadastre.hpp"
 
 #include <algorithm>
+#include <exception>
+#include <thread>
 
 #include "urbanvec/cadastre/buildings.hpp"
 #include "urbanvec/cadastre/circuits.hpp"
@@ -116,17 +118,16 @@ CadastreResult structureCadastre(const std::vector<CadLine>& lines, const std::v
           if (d > o.collapsingThreshold) enclosedBlock[static_cast<size_t>(k)] = 1;
         });
       }
-    }
-    // A number-of-floors label inside the ring also makes it a block (a building fills it).
-    for (int k : candidates) {
-      const Ring& ring = bc.outlines[static_cast<size_t>(k)];
-      double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-      for (const Vec2& p : ring)
-        x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
-      for (const CadLabel& l : labels)
-        if (!enclosedBlock[static_cast<size_t>(k)] && l.p.x >= x0 && l.p.x <= x1 && l.p.y >= y0 &&
-            l.p.y <= y1 && pointInRing(l.p, ring) && parseFloorLabel(l.text).above > 0)
-          enclosedBlock[static_cast<size_t>(k)] = 1;
+      // A number-of-floors label inside the ring also makes it a block (a building fills it).
+      for (const CadLabel& l : labels) {
+        int floors = -1;  // parsed once, when the label falls in a candidate ring
+        grid.query(l.p.x, l.p.y, l.p.x, l.p.y, [&](int k) {
+          if (enclosedBlock[static_cast<size_t>(k)] || !pointInRing(l.p, bc.outlines[static_cast<size_t>(k)]))
+            return;
+          if (floors < 0) floors = parseFloorLabel(l.text).above > 0 ? 1 : 0;
+          if (floors == 1) enclosedBlock[static_cast<size_t>(k)] = 1;
+        });
+      }
     }
     for (char e : enclosedBlock) rep.enclosedBlocks += e ? 1 : 0;
   }
@@ -134,23 +135,28 @@ CadastreResult structureCadastre(const std::vector<CadLine>& lines, const std::v
   // Blocks in order of their components (deterministic: by lowest node id).
   std::vector<Polygon> blockAreas;
   std::vector<int> blockAreaOwner;
+  // Per component: whether it has a bounded face, and the components nested in one of its faces (in
+  // increasing order), so that blocks and their courtyards are found in linear time.
+  std::vector<char> componentHasFace(bc.outlines.size(), 0);
+  for (int fc : bc.faceComponent) componentHasFace[static_cast<size_t>(fc)] = 1;
+  std::vector<std::vector<size_t>> nestedIn(bc.outlines.size());
+  for (size_t j = 0; j < bc.outlines.size(); ++j) {
+    const int pf = bc.parentFace[j];
+    if (pf >= 0) nestedIn[static_cast<size_t>(bc.faceComponent[static_cast<size_t>(pf)])].push_back(j);
+  }
   for (size_t k = 0; k < bc.outlines.size(); ++k) {
     if (!isBlock(k) || bc.outlines[k].size() < 4) continue;
-    bool hasFace = false;
-    for (int fc : bc.faceComponent) hasFace = hasFace || fc == static_cast<int>(k);
-    if (!hasFace) continue;  // a pre-block without a circuit is eliminated
+    if (!componentHasFace[k]) continue;  // a pre-block without a circuit is eliminated
     blockOfComponent[k] = static_cast<int>(result.blocks.size());
     BlockOut b;
     b.preBlock = preBlockOfComponent[k];
     Polygon outline{bc.outlines[k], {}};
-    for (size_t j = 0; j < bc.outlines.size(); ++j) {
-      const int pf = bc.parentFace[j];
-      if (pf >= 0 && bc.faceComponent[static_cast<size_t>(pf)] == static_cast<int>(k) && !enclosedBlock[j]) {
-        Ring hole = bc.outlines[j];
-        std::reverse(hole.begin(), hole.end());
-        outline.holes.push_back(std::move(hole));
-        ++b.courtyards;
-      }
+    for (size_t j : nestedIn[k]) {
+      if (enclosedBlock[j]) continue;
+      Ring hole = bc.outlines[j];
+      std::reverse(hole.begin(), hole.end());
+      outline.holes.push_back(std::move(hole));
+      ++b.courtyards;
     }
     b.shape = validParts(outline, o.minFaceArea);
     result.blocks.push_back(std::move(b));
@@ -183,28 +189,62 @@ CadastreResult structureCadastre(const std::vector<CadLine>& lines, const std::v
   const BlockLocator locator(blockAreas, blockAreaOwner);
   reportProgress(progress, 0.5, "parcels");
 
-  // Parcels (beyond the thesis): circuits of block + lot linework inside the blocks.
-  {
+  // Parcels (beyond the thesis): circuits of block + lot linework inside the blocks. Independent of the
+  // building graph below, so with two or more threads both are built side by side; each writes only its
+  // own variables, so the output does not depend on the thread count.
+  auto parcels = [&](const Progress& parcelProgress) {
     GraphStats pg;
-    const PlanarGraph g = structuredGraph(lw, kBlockLayer | kLotLayer, o.blockThreshold, pg,
-                                          subProgress(progress, 0.5, 0.65), tolerance);
+    const PlanarGraph g =
+        structuredGraph(lw, kBlockLayer | kLotLayer, o.blockThreshold, pg, parcelProgress, tolerance);
     const Circuits pc = findCircuits(g, o.minFaceArea, o.sliverWidthShare * o.collapsingThreshold);
     std::size_t outside = 0;
     for (Localised& l : localise(pc.faces, locator, o.minFaceArea, outside))
       result.parcels.push_back({std::move(l.shape), l.block});
-    rep.parcels = result.parcels.size();
+  };
+  const unsigned threads =
+      o.threads > 0 ? static_cast<unsigned>(o.threads) : std::max(1U, std::thread::hardware_concurrency());
+  std::thread parcelWorker;
+  std::exception_ptr parcelError;
+  if (threads >= 2) {
+    parcelWorker = std::thread([&] {
+      try {
+        parcels(Progress{});  // progress is reported by the building graph on this thread
+      } catch (...) {
+        parcelError = std::current_exception();
+      }
+    });
+  } else {
+    parcels(subProgress(progress, 0.5, 0.65));
   }
+  auto joinParcels = [&] {
+    if (parcelWorker.joinable()) parcelWorker.join();
+  };
 
   // §A.7 buildings: lot and building layers together with the block layer, circuits again.
   GraphStats bg;
-  const PlanarGraph g = structuredGraph(lw, kBlockLayer | kLotLayer | kBuildingLayer, o.blockThreshold, bg,
-                                        subProgress(progress, 0.65, 0.85), tolerance);
+  PlanarGraph g;
+  try {
+    g = structuredGraph(lw, kBlockLayer | kLotLayer | kBuildingLayer, o.blockThreshold, bg,
+                        subProgress(progress, 0.65, 0.85), tolerance);
+  } catch (...) {
+    joinParcels();
+    throw;
+  }
   addGraphStats(rep, bg);
-  const Circuits ec = findCircuits(g, o.minFaceArea, o.sliverWidthShare * o.collapsingThreshold);
-  rep.slivers += ec.slivers;
+  Circuits ec;
   std::vector<Localised> outsideFaces;
-  std::vector<Localised> elements =
-      localise(ec.faces, locator, o.minFaceArea, rep.facesOutsideBlocks, &outsideFaces);
+  std::vector<Localised> elements;
+  try {
+    ec = findCircuits(g, o.minFaceArea, o.sliverWidthShare * o.collapsingThreshold);
+    elements = localise(ec.faces, locator, o.minFaceArea, rep.facesOutsideBlocks, &outsideFaces);
+  } catch (...) {
+    joinParcels();
+    throw;
+  }
+  joinParcels();
+  if (parcelError) std::rethrow_exception(parcelError);
+  rep.parcels = result.parcels.size();
+  rep.slivers += ec.slivers;
   const std::size_t inBlocks = elements.size();
   for (Localised& l : outsideFaces) elements.push_back(std::move(l));
   reportProgress(progress, 0.9, "heights");

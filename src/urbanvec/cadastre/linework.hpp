@@ -79,6 +79,9 @@ struct CadastreOptions {
   /// offset"); 0 keeps heights exact.
   double heightOffset = 0.0;
   std::uint64_t seed = 0;
+  /// Worker threads (0 = all cores): with two or more, the parcel and building graphs are built side
+  /// by side. The output does not depend on it.
+  int threads = 1;
 };
 
 /// A uniform grid of ids by cell, for proximity queries (collapsing, snapping, clustering).
