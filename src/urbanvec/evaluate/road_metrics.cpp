@@ -11,6 +11,7 @@
 
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/core/geos.hpp"
+#include "urbanvec/core/segment_contact.hpp"
 
 namespace urbanvec::evaluate {
 
@@ -37,18 +38,11 @@ struct Segment {
   Vec2 b;
 };
 
-bool segmentsCross(const Segment& s, const Segment& t) {
-  const auto side = [](const Vec2& o, const Vec2& p, const Vec2& q) { return cross(p - o, q - o); };
-  const double d1 = side(t.a, t.b, s.a), d2 = side(t.a, t.b, s.b);
-  const double d3 = side(s.a, s.b, t.a), d4 = side(s.a, s.b, t.b);
-  return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
-}
-
 /// GEOS calls this with one tree item and the query item, in an order it does not promise.
 int segmentDistance(const void* item1, const void* item2, double* result, void*) {
   const Segment& s = *static_cast<const Segment*>(item1);
   const Segment& t = *static_cast<const Segment*>(item2);
-  if (segmentsCross(s, t)) {
+  if (segmentsCross(s.a, s.b, t.a, t.b)) {
     *result = 0.0;
     return 1;
   }

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <map>
 
+#include "urbanvec/core/segment_contact.hpp"
+
 namespace urbanvec::shrink {
 
 std::vector<std::vector<int>> densifyWays(const std::vector<std::vector<int>>& ways, double maxStep,
@@ -45,24 +47,6 @@ std::vector<std::vector<int>> densifyWays(const std::vector<std::vector<int>>& w
 }
 
 namespace {
-
-double orient(const Vec2& a, const Vec2& b, const Vec2& c) {
-  return cross(b - a, c - a);
-}
-
-bool onSegment(const Vec2& a, const Vec2& b, const Vec2& p) {
-  return std::min(a.x, b.x) <= p.x && p.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= p.y &&
-         p.y <= std::max(a.y, b.y);
-}
-
-/// Closed segments p1p2 and q1q2 share a point (crossing, touching or overlapping).
-bool intersects(const Vec2& p1, const Vec2& p2, const Vec2& q1, const Vec2& q2) {
-  const double d1 = orient(p1, p2, q1), d2 = orient(p1, p2, q2), d3 = orient(q1, q2, p1),
-               d4 = orient(q1, q2, p2);
-  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return true;
-  return (d1 == 0 && onSegment(p1, p2, q1)) || (d2 == 0 && onSegment(p1, p2, q2)) ||
-         (d3 == 0 && onSegment(q1, q2, p1)) || (d4 == 0 && onSegment(q1, q2, p2));
-}
 
 /// Uniform grid of the current segments of every way.
 class SegmentIndex {
@@ -150,12 +134,13 @@ class SegmentIndex {
           const int mine = shared == a ? b : a;
           const Vec2 o = pos_[static_cast<size_t>(other)], m = pos_[static_cast<size_t>(mine)],
                      sp = pos_[static_cast<size_t>(shared)];
-          if (other != mine && orient(sp, m, o) == 0 && dot(m - sp, o - sp) > 0) hit = true;
+          if (other != mine && orientation(sp, m, o) == 0 && dot(m - sp, o - sp) > 0) hit = true;
           if (other == mine && !sameSegmentOk) hit = true;  // the same segment twice
           if (hit) return;
           continue;
         }
-        if (intersects(p, q, pos_[static_cast<size_t>(s.a)], pos_[static_cast<size_t>(s.b)])) {
+        if (segmentContact(p, q, pos_[static_cast<size_t>(s.a)], pos_[static_cast<size_t>(s.b)]) !=
+            SegmentContact::None) {
           hit = true;
           return;
         }

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "urbanvec/core/planar_graph.hpp"
+#include "urbanvec/core/segment_contact.hpp"
 
 namespace urbanvec::shrink {
 namespace {
@@ -60,10 +61,6 @@ int componentCount(const std::map<int, std::vector<int>>& adj) {
   return count;
 }
 
-double orient(const Vec2& a, const Vec2& b, const Vec2& c) {
-  return cross(b - a, c - a);
-}
-
 /// Way pairs (i <= j) with two segments crossing properly (not at a shared node).
 std::set<std::pair<int, int>> crossingPairs(const std::vector<std::vector<int>>& ways,
                                             const std::vector<Vec2>& pos) {
@@ -102,10 +99,7 @@ std::set<std::pair<int, int>> crossingPairs(const std::vector<std::vector<int>>&
         if (s.a == t.a || s.a == t.b || s.b == t.a || s.b == t.b) continue;
         const Vec2 p1 = pos[static_cast<size_t>(s.a)], p2 = pos[static_cast<size_t>(s.b)];
         const Vec2 q1 = pos[static_cast<size_t>(t.a)], q2 = pos[static_cast<size_t>(t.b)];
-        const double d1 = orient(p1, p2, q1), d2 = orient(p1, p2, q2), d3 = orient(q1, q2, p1),
-                     d4 = orient(q1, q2, p2);
-        if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0)))
-          pairs.insert({std::min(s.way, t.way), std::max(s.way, t.way)});
+        if (segmentsCross(p1, p2, q1, q2)) pairs.insert({std::min(s.way, t.way), std::max(s.way, t.way)});
       }
   return pairs;
 }

@@ -9,6 +9,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "urbanvec/core/segment_contact.hpp"
 #include "urbanvec/vectorize/roads/road_graph_build.hpp"
 #include "urbanvec/vectorize/roads/road_output.hpp"
 #include "urbanvec/vectorize/vectorize_input.hpp"
@@ -22,26 +23,6 @@ struct Piece {
   int line;   ///< feature (or first node id for graph links)
   int index;  ///< piece index within the feature (or second node id)
 };
-
-double orient(const Vec2& a, const Vec2& b, const Vec2& c) {
-  return cross(b - a, c - a);
-}
-
-bool onSegment(const Vec2& a, const Vec2& b, const Vec2& p) {
-  return std::min(a.x, b.x) <= p.x && p.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= p.y &&
-         p.y <= std::max(a.y, b.y);
-}
-
-/// 0 = disjoint, 1 = proper crossing of interiors, 2 = touching/overlapping in any other way.
-int segmentContact(const Vec2& p1, const Vec2& p2, const Vec2& q1, const Vec2& q2) {
-  const double d1 = orient(q1, q2, p1), d2 = orient(q1, q2, p2), d3 = orient(p1, p2, q1),
-               d4 = orient(p1, p2, q2);
-  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return 1;
-  if ((d1 == 0 && onSegment(q1, q2, p1)) || (d2 == 0 && onSegment(q1, q2, p2)) ||
-      (d3 == 0 && onSegment(p1, p2, q1)) || (d4 == 0 && onSegment(p1, p2, q2)))
-    return 2;
-  return 0;
-}
 
 /// Calls visit(i, j) once for every pair of pieces whose bounding boxes share a bucket.
 template <class Visit>
@@ -125,12 +106,12 @@ void forEachForbiddenContact(const std::vector<Piece>& pieces, const std::vector
   forEachNearPair(pieces, [&](int i, int j) {
     const Piece& p = pieces[i];
     const Piece& q = pieces[j];
-    const int contact = segmentContact(p.a, p.b, q.a, q.b);
-    if (contact == 0) return;
-    if (contact == 2) {
+    const SegmentContact contact = segmentContact(p.a, p.b, q.a, q.b);
+    if (contact == SegmentContact::None) return;
+    if (contact == SegmentContact::Touching) {
       const LineString& lp = *lines[p.line];
       const LineString& lq = *lines[q.line];
-      const bool collinear = orient(p.a, p.b, q.a) == 0 && orient(p.a, p.b, q.b) == 0;
+      const bool collinear = orientation(p.a, p.b, q.a) == 0 && orientation(p.a, p.b, q.b) == 0;
       Vec2 shared;
       int sharedCount = 0;
       for (const Vec2& u : {p.a, p.b})
@@ -139,8 +120,8 @@ void forEachForbiddenContact(const std::vector<Piece>& pieces, const std::vector
             shared = u;
             ++sharedCount;
           }
-      if (sharedCount == 1 && !(collinear && (onSegment(p.a, p.b, q.a == shared ? q.b : q.a) ||
-                                              onSegment(q.a, q.b, p.a == shared ? p.b : p.a)))) {
+      if (sharedCount == 1 && !(collinear && (inSegmentBox(p.a, p.b, q.a == shared ? q.b : q.a) ||
+                                              inSegmentBox(q.a, q.b, p.a == shared ? p.b : p.a)))) {
         if (p.line == q.line && std::abs(p.index - q.index) == 1) return;
         const bool endOfP = shared == lp.front() || shared == lp.back();
         const bool endOfQ = shared == lq.front() || shared == lq.back();
@@ -403,8 +384,7 @@ std::size_t nodeCrossingsAndContractTinyLinks(RoadGraph& graph, double minLength
         }
         return;
       }
-      const int contact = segmentContact(p.a, p.b, q.a, q.b);
-      if (contact == 1) crossingPairs.emplace_back(i, j);
+      if (segmentsCross(p.a, p.b, q.a, q.b)) crossingPairs.emplace_back(i, j);
       for (int node : {q.line, q.index})
         if (nearInterior(graph.nodes[node].p, p.a, p.b)) touches.emplace_back(i, node);
       for (int node : {p.line, p.index})

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "urbanvec/core/segment_contact.hpp"
 #include "urbanvec/vectorize/roads/road_network.hpp"
 #include "urbanvec/vectorize/roads/straightening.hpp"
 #include "urbanvec/vectorize/vectorize_input.hpp"
@@ -50,12 +51,6 @@ bool isRoad(const RoadNode& n) {
 bool isChainEnd(const RoadGraph& graph, int i) {
   const RoadNode& n = graph.nodes[i];
   return n.intersection || n.links.size() != 2;
-}
-
-bool segmentsCross(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
-  const auto side = [](const Vec2& o, const Vec2& p, const Vec2& q) { return cross(p - o, q - o); };
-  const double d1 = side(c, d, a), d2 = side(c, d, b), d3 = side(a, b, c), d4 = side(a, b, d);
-  return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
 }
 
 /// Where the stage may move nodes: the node index for neighbourhood queries and the longest link.
