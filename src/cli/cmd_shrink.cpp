@@ -93,9 +93,14 @@ app::CommandSpec spec() {
                   .isAdvanced());
   o.push_back(
       option("-translate-nodes-only", ValueType::Flag, "",
-             "Back to vector as the thesis: move only the ways' nodes (no densified ways, no way "
-             "separation); every seam can go, but close ways can fold over each other (new crossings).")
+             "Back to vector as the thesis: move only the ways' nodes (no densified ways, no crossing "
+             "guard); close ways can fold over each other (new crossings).")
           .isAdvanced());
+  o.push_back(option("-threads", ValueType::Integer, "<n>",
+                     "Threads of seam carving (0 = all cores); the output does not depend on it.")
+                  .byDefault("0")
+                  .atLeast(0)
+                  .isAdvanced());
   o.push_back(option("-freeze-all-street-nodes", ValueType::Flag, "",
                      "Freeze every skeleton street node, so no street loses a node.")
                   .isAdvanced());
@@ -203,6 +208,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   options.carving.verticalSeams = seamCount(seams.at(seams.size() - 2));
   options.carving.horizontalSeams = seamCount(seams.at(seams.size() - 1));
   options.carving.imageSize = static_cast<int>(args.integer("-image-size"));
+  options.carving.threads = static_cast<int>(args.integer("-threads"));
   options.connection.mDegree = static_cast<int>(args.integer("-m-degree"));
   options.connection.impDistBalance = args.real("-imp-dist-balance");
   options.carving.grayDistBalance = args.real("-gray-dist-balance");

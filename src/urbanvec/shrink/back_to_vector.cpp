@@ -54,4 +54,17 @@ bool PointMapper::map(const Vec2& p, bool collapse, Vec2& out) const {
   return true;
 }
 
+SeamWays seamWaysOf(const std::vector<std::vector<int>>& ways, const std::vector<Vec2>& pos,
+                    const RasterFrame& frame) {
+  SeamWays s;
+  s.ways = ways;
+  for (const Vec2& p : pos) {
+    const int r = frame.row(p.y), c = frame.col(p.x);
+    s.col.push_back(c), s.row.push_back(r);
+    s.fx.push_back((p.x - frame.x0) / frame.cell - c);
+    s.fy.push_back((frame.yTop - p.y) / frame.cell - r);
+  }
+  return s;
+}
+
 }  // namespace urbanvec::shrink

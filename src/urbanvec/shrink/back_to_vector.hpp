@@ -25,4 +25,9 @@ class PointMapper {
   const CarveResult& carve_;
 };
 
+/// The ways (point lists into `pos`) in pixel units of `frame`, each point in its pixel and at its
+/// place inside it as PointMapper reads them: the crossing guard's input (carveSeams).
+SeamWays seamWaysOf(const std::vector<std::vector<int>>& ways, const std::vector<Vec2>& pos,
+                    const RasterFrame& frame);
+
 }  // namespace urbanvec::shrink

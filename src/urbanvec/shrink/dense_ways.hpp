@@ -22,50 +22,6 @@ namespace urbanvec::shrink {
 std::vector<std::vector<int>> densifyWays(const std::vector<std::vector<int>>& ways, double maxStep,
                                           std::vector<Vec2>& pos, std::vector<Vec2>& shadow);
 
-/// Pieces of the ways drawn in each pixel, for carveSeams's way separation: each way is cut into
-/// pieces of `piece` pixels along it, numbered consecutively (`pieceWay` gives each piece's way), so a
-/// way that comes back near itself (a hairpin) is kept apart from itself too. Per pixel (row-major,
-/// `width` x `height`, pixel of a point given by `pixelOf`): a piece, -1 for none, -2 for pieces that are
-/// not neighbours on one way. `ways` are point lists into `pos`; segments are sampled every third of a
-/// pixel.
-template <class PixelOf>
-std::vector<int> wayLabels(const std::vector<std::vector<int>>& ways, const std::vector<Vec2>& pos, int width,
-                           int height, double cell, double piece, std::vector<int>& pieceWay,
-                           PixelOf&& pixelOf) {
-  std::vector<int> label(static_cast<size_t>(width) * static_cast<size_t>(height), -1);
-  pieceWay.clear();
-  for (size_t w = 0; w < ways.size(); ++w) {
-    double along = 0.0;
-    const int first = static_cast<int>(pieceWay.size());
-    pieceWay.push_back(static_cast<int>(w));
-    auto mark = [&](const Vec2& p) {
-      const int id = first + static_cast<int>(along / (piece * cell));
-      while (static_cast<int>(pieceWay.size()) <= id) pieceWay.push_back(static_cast<int>(w));
-      int& l = label[static_cast<size_t>(pixelOf(p))];
-      if (l == -1)
-        l = id;
-      else if (l != -2 && !(pieceWay[static_cast<size_t>(l)] == static_cast<int>(w) && std::abs(l - id) <= 1))
-        l = -2;
-    };
-    const auto& way = ways[w];
-    for (size_t i = 0; i < way.size(); ++i) {
-      const Vec2 b = pos[static_cast<size_t>(way[i])];
-      if (i == 0) {
-        mark(b);
-        continue;
-      }
-      const Vec2 a = pos[static_cast<size_t>(way[i - 1])];
-      const double len = distance(a, b);
-      const int k = std::max(1, static_cast<int>(std::ceil(3.0 * len / cell)));
-      for (int t = 1; t <= k; ++t) {
-        along += len / k;
-        mark(a + (b - a) * (static_cast<double>(t) / k));
-      }
-    }
-  }
-  return label;
-}
-
 struct SimplifyStats {
   int removed = 0;     ///< removable points dropped
   int kept = 0;        ///< removable points kept because dropping them would cross or touch a segment

@@ -20,6 +20,15 @@ struct CarvedSeam {
   std::vector<int> pixels;  ///< original pixel indices (row-major), one per row or per column
 };
 
+/// The street ways drawn on the image, for the crossing guard of carveSeams: points in pixel units
+/// (`col`, `row` the pixel, `fx`, `fy` in [0, 1] the place inside it, as PointMapper computes them) and
+/// the ways as point lists.
+struct SeamWays {
+  std::vector<int> col, row;
+  std::vector<double> fx, fy;
+  std::vector<std::vector<int>> ways;
+};
+
 struct CarveResult {
   int width = 0;  ///< final size
   int height = 0;
@@ -35,24 +44,34 @@ struct CarveResult {
   /// path without filling a line; -2 when the direction was not blocked.
   int verticalBlockedAt = -2;
   int horizontalBlockedAt = -2;
-  /// Pixels given +infinity to keep distinct ways apart (with wayLabels), initially and after seams.
-  size_t separationFrozen = 0;
+  /// When blocked with no frozen line: true when a path would exist without the crossing guard's pixels.
+  bool verticalBlockedByGuard = false;
+  bool horizontalBlockedByGuard = false;
+  /// Crossing guard: pixels given +infinity because the seam through them would have made two way
+  /// segments cross or touch, and the seams that had to be searched again because of that.
+  size_t crossingFrozen = 0;
+  size_t seamRetries = 0;
+  /// Cumulative-energy cells recomputed, over all seam searches (the O(pixels) per seam bound).
+  size_t cellsUpdated = 0;
 };
 
 /// Removes up to `vertical` vertical and `horizontal` horizontal minimal-energy 8-connected seams
 /// (dynamic programming, O(pixels) per seam; +infinity pixels are never crossed), in `order`. The
 /// energy is not recomputed: it is carried with the pixels (§B.10 [INFERENCE]). Deterministic ties:
 /// the lowest column of the last row; backtracking prefers straight down, then left, then right.
+/// The cumulative energy is updated after each seam only where it changed (the cone below the removed
+/// seam, where the values differ), which gives the same values as a full recomputation.
 ///
-/// `wayLabels` (optional, per original pixel): the piece of street way drawn in the pixel, -1 for none,
-/// -2 for several (see wayLabels in dense_ways.hpp; `pieceWay` gives each piece's way: consecutive
-/// pieces of one way count as the same way). Pixels holding several ways, or 8-adjacent to a pixel of another
-/// way, get +infinity, and so do the pixels that become such after a seam (a removed pixel's ways move onto
-/// the neighbour it collapses onto; pixels on both sides of the seam become neighbours): a seam never moves
-/// one way and not another within a pixel of it, nor collapses two ways onto one pixel edge.
+/// `ways` (optional): the crossing guard. Each seam found is first applied to the ways' points (a
+/// point moves with its pixel; a point of a removed pixel goes to the edge of the neighbour it collapses
+/// onto); when a segment of a way would then cross or touch a segment it did not touch before (another
+/// way's or its own), the seam's pixels on the lines of those segments' points get +infinity and the
+/// seam is searched again. So no seam ever makes two ways cross, and only the pixels where a crossing
+/// would really arise are frozen.
+///
+/// `threads` (0 = every core) move the rows of large images in bands; the result does not depend on it.
 CarveResult carveSeams(const std::vector<float>& energy, int width, int height, int vertical, int horizontal,
-                       SeamOrder order, const Progress& progress = {},
-                       const std::vector<int>* wayLabels = nullptr,
-                       const std::vector<int>* pieceWay = nullptr);
+                       SeamOrder order, const Progress& progress = {}, const SeamWays* ways = nullptr,
+                       int threads = 1);
 
 }  // namespace urbanvec::shrink

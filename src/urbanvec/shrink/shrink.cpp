@@ -323,11 +323,9 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
             : waysBefore;
   const size_t nPoints = pointPos.size();
   const std::vector<float> energy = seamEnergy(raster, options.carving.grayDistBalance);
-  std::vector<int> labels, pieceWay;
-  if (dense && options.carving.separateWays)
-    labels =
-        wayLabels(wayPoints, pointPos, frame.width, frame.height, frame.cell, options.carving.separationPiece,
-                  pieceWay, [&](const Vec2& p) { return frame.row(p.y) * frame.width + frame.col(p.x); });
+  // The crossing guard of seam carving: every dense point in pixel units, as PointMapper places it.
+  SeamWays seamWays;
+  if (dense && options.carving.separateWays) seamWays = seamWaysOf(wayPoints, pointPos, frame);
   size_t frozenPixels = 0;
   for (int owner : raster.freezeOwner) frozenPixels += owner != kNotFrozen;
   put("frozen_pixels", static_cast<double>(frozenPixels));
@@ -337,8 +335,12 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
   const CarveResult carve =
       carveSeams(energy, frame.width, frame.height, options.carving.verticalSeams,
                  options.carving.horizontalSeams, options.carving.order, subProgress(progress, 0.25, 0.85),
-                 labels.empty() ? nullptr : &labels, &pieceWay);
-  put("way_separation_pixels", static_cast<double>(carve.separationFrozen));
+                 seamWays.ways.empty() ? nullptr : &seamWays, options.carving.threads);
+  put("crossing_guard_pixels", static_cast<double>(carve.crossingFrozen));
+  put("crossing_guard_retries", static_cast<double>(carve.seamRetries));
+  put("cumulative_cells_per_seam", carve.seams.empty() ? 0.0
+                                                       : static_cast<double>(carve.cellsUpdated) /
+                                                             static_cast<double>(carve.seams.size()));
   timer.lap("step8SC");
   put("seams_vertical_requested", options.carving.verticalSeams);
   put("seams_horizontal_requested", options.carving.horizontalSeams);
@@ -373,10 +375,15 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
       why += names.empty() ? " by street intersections"
                            : " by the landmark" + std::string(owners.size() > 2 ? "s " : " ") + names +
                                  (owners.count(kFrozenStreetNode) ? " and street intersections" : "");
+    } else if (vertical ? carve.verticalBlockedByGuard : carve.horizontalBlockedByGuard) {
+      why = "every remaining path crosses a pixel the crossing guard froze (" +
+            std::to_string(carve.crossingFrozen) +
+            " pixels where a seam would have made two streets cross or touch); a path avoiding the landmarks "
+            "and street intersections alone exists";
     } else {
-      why =
-          "every path across the image crosses a frozen pixel (landmarks, street intersections, and streets "
-          "within a pixel of another street, which a seam there would fold over each other)";
+      why = "every path across the image crosses a frozen pixel (landmarks, street intersections, and the " +
+            std::to_string(carve.crossingFrozen) +
+            " pixels where a seam would have made two streets cross or touch)";
     }
     report.notes.push_back(std::string(dir) + " seams " + seamRange(removed + 1, requested) + " of " +
                            std::to_string(requested) + " could not be removed: " + why);

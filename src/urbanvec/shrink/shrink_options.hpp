@@ -75,12 +75,12 @@ struct CarvingOptions {
   /// After carving, a synthetic point (or a node whose pixel was removed) is dropped only when the
   /// shortcut stays within this many pixels of the points it replaces and touches no other segment.
   double simplifyTolerance = 1.0;
-  /// Freeze the pixels where two different skeleton ways come within one pixel of each other (a seam
-  /// there would move one way and not the other and fold them over each other).
+  /// Crossing guard: before a seam is removed it is applied to the densified ways; when two way segments
+  /// would then cross or touch, the seam's pixels on their lines get +infinity and the seam is searched
+  /// again (only the pixels where a crossing would really arise are frozen).
   bool separateWays = true;
-  /// Length, pixels, of the pieces a way is cut into for that separation: a way coming back within a
-  /// pixel of itself more than a piece further along is kept apart from itself too.
-  double separationPiece = 2.0;
+  /// Threads of seam carving (0 = every core); the output does not depend on it.
+  int threads = 0;
 };
 
 struct PostOptions {

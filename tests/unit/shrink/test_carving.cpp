@@ -1,7 +1,9 @@
 // Seam carving (spec §B.10, §H.2 item 6) and the energy of §B.9.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <random>
 
@@ -107,6 +109,91 @@ TEST(SeamCarving, SizesConnectivityFrozenPixelsAndAlignment) {
       }
     }
   }
+}
+
+/// The textbook carving: the whole cumulative energy recomputed for every seam, the seam cut out of a
+/// copy of the image; same tie rules as carveSeams (lowest end column; straight, left, right). Returns
+/// the original pixels of each vertical seam.
+std::vector<std::vector<int>> referenceVerticalSeams(const std::vector<float>& e0, int w, int h, int seams) {
+  std::vector<float> e = e0;
+  std::vector<int> idx(e.size());
+  for (size_t i = 0; i < idx.size(); ++i) idx[i] = static_cast<int>(i);
+  std::vector<std::vector<int>> out;
+  for (int cols = w; seams-- > 0; --cols) {
+    std::vector<float> m(static_cast<size_t>(cols * h));
+    for (int r = 0; r < h; ++r)
+      for (int c = 0; c < cols; ++c) {
+        float best = 0.0f;
+        if (r > 0) {
+          best = m[static_cast<size_t>((r - 1) * cols + c)];
+          if (c > 0) best = std::min(best, m[static_cast<size_t>((r - 1) * cols + c - 1)]);
+          if (c + 1 < cols) best = std::min(best, m[static_cast<size_t>((r - 1) * cols + c + 1)]);
+        }
+        m[static_cast<size_t>(r * cols + c)] = e[static_cast<size_t>(r * cols + c)] + best;
+      }
+    int c = 0;
+    for (int k = 1; k < cols; ++k)
+      if (m[static_cast<size_t>((h - 1) * cols + k)] < m[static_cast<size_t>((h - 1) * cols + c)]) c = k;
+    std::vector<int> path(static_cast<size_t>(h)), pixels(static_cast<size_t>(h));
+    for (int r = h - 1; r >= 0; --r) {
+      path[static_cast<size_t>(r)] = c;
+      if (r == 0) break;
+      const float* p = &m[static_cast<size_t>((r - 1) * cols)];
+      int next = c;
+      if (c > 0 && p[c - 1] < p[next]) next = c - 1;
+      if (c + 1 < cols && p[c + 1] < p[next]) next = c + 1;
+      c = next;
+    }
+    std::vector<float> e2;
+    std::vector<int> i2;
+    for (int r = 0; r < h; ++r)
+      for (int k = 0; k < cols; ++k) {
+        if (k == path[static_cast<size_t>(r)]) {
+          pixels[static_cast<size_t>(r)] = idx[static_cast<size_t>(r * cols + k)];
+          continue;
+        }
+        e2.push_back(e[static_cast<size_t>(r * cols + k)]);
+        i2.push_back(idx[static_cast<size_t>(r * cols + k)]);
+      }
+    e.swap(e2), idx.swap(i2);
+    out.push_back(pixels);
+  }
+  return out;
+}
+
+TEST(SeamCarving, IncrementalCumulativeEnergyGivesTheTextbookSeams) {
+  // carveSeams updates the cumulative energy only in the cone below each removed seam: on images with
+  // many ties and frozen pixels it must still remove exactly the seams of the full recomputation.
+  std::mt19937 rng(5);
+  for (int trial = 0; trial < 6; ++trial) {
+    const int w = 50 + 7 * trial, h = 40 + 5 * trial;
+    std::uniform_int_distribution<int> value(0, trial % 2 ? 3 : 255);
+    std::bernoulli_distribution frozen(0.05);
+    std::vector<float> e(static_cast<size_t>(w * h));
+    for (float& v : e) v = frozen(rng) ? kInf : static_cast<float>(value(rng));
+    const int seams = 30;
+    const std::vector<std::vector<int>> want = referenceVerticalSeams(e, w, h, seams);
+    const CarveResult r = carveSeams(e, w, h, seams, 0, SeamOrder::Blocks);
+    ASSERT_EQ(r.seams.size(), want.size()) << "trial " << trial;
+    for (size_t k = 0; k < want.size(); ++k)
+      EXPECT_EQ(r.seams[k].pixels, want[k]) << "trial " << trial << " seam " << k;
+    EXPECT_LT(r.cellsUpdated, static_cast<size_t>(seams) * static_cast<size_t>(w * h))
+        << "the cone update recomputes less than the whole image";
+  }
+}
+
+TEST(SeamCarving, ThreadsDoNotChangeTheResult) {
+  // Large enough (over 2^20 pixels) for the rows to be moved in bands.
+  const int w = 1100, h = 1000;
+  std::mt19937 rng(9);
+  std::uniform_int_distribution<int> value(0, 20);
+  std::vector<float> e(static_cast<size_t>(w) * h);
+  for (float& v : e) v = static_cast<float>(value(rng));
+  const CarveResult one = carveSeams(e, w, h, 4, 3, SeamOrder::Interleaved, {}, nullptr, 1);
+  const CarveResult two = carveSeams(e, w, h, 4, 3, SeamOrder::Interleaved, {}, nullptr, 2);
+  EXPECT_EQ(one.finalCol, two.finalCol);
+  EXPECT_EQ(one.finalRow, two.finalRow);
+  EXPECT_EQ(one.mergedInto, two.mergedInto);
 }
 
 TEST(SeamCarving, AFrozenRowStopsVerticalSeamsAndSaysWhere) {

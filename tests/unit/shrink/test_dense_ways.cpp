@@ -1,9 +1,14 @@
 // Back to vector without new crossings (spec §B.11; issue 19 "topology: no new crossings"): densified
-// ways, crossing-safe simplification, and the way separation of seam carving.
+// ways, crossing-safe simplification, and the crossing guard of seam carving.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <random>
 #include <vector>
 
+#include "urbanvec/core/segment_contact.hpp"
+#include "urbanvec/shrink/back_to_vector.hpp"
 #include "urbanvec/shrink/dense_ways.hpp"
 #include "urbanvec/shrink/seam_carving.hpp"
 
@@ -72,59 +77,105 @@ TEST(DenseWays, StraighteningMovesThatCrossOrJumpAnotherWayAreReverted) {
   EXPECT_EQ(to3[1].y, 2.5);
 }
 
-TEST(DenseWays, SeamsNeverRemoveAPixelBetweenTwoWaysWithinAPixel) {
-  // Two vertical streets in adjacent columns 3 and 4 of a 10x6 image, zero energy everywhere: without
-  // separation the cheapest seams may take either; with it neither column (nor its neighbours that
-  // touch the other way) can be removed, so seams go elsewhere and both ways keep their gap.
-  const int w = 10, h = 6;
-  std::vector<float> energy(static_cast<size_t>(w * h), 0.0f);
-  std::vector<int> labels(energy.size(), -1);
-  for (int r = 0; r < h; ++r)
-    labels[static_cast<size_t>(r * w + 3)] = 0, labels[static_cast<size_t>(r * w + 4)] = 1;
-  const std::vector<int> pieceWay{0, 1};
-  const CarveResult c = carveSeams(energy, w, h, 6, 0, SeamOrder::Blocks, {}, &labels, &pieceWay);
-  EXPECT_EQ(c.verticalRemoved, 6);
-  for (int r = 0; r < h; ++r) {
-    EXPECT_GE(c.finalRow[static_cast<size_t>(r * w + 3)], 0);
-    EXPECT_GE(c.finalRow[static_cast<size_t>(r * w + 4)], 0);
-    EXPECT_EQ(c.finalCol[static_cast<size_t>(r * w + 4)], c.finalCol[static_cast<size_t>(r * w + 3)] + 1);
-  }
-  EXPECT_EQ(c.separationFrozen, static_cast<size_t>(2 * h));
-  // Two ways two columns apart: the gap column may go, but then they are neighbours and stay so.
-  std::vector<int> apart(energy.size(), -1);
-  for (int r = 0; r < h; ++r)
-    apart[static_cast<size_t>(r * w + 2)] = 0, apart[static_cast<size_t>(r * w + 4)] = 1;
-  std::vector<float> cheapGap = energy;
-  for (int r = 0; r < h; ++r) cheapGap[static_cast<size_t>(r * w + 3)] = -1.0f;  // the gap goes first
-  const CarveResult d = carveSeams(cheapGap, w, h, 8, 0, SeamOrder::Blocks, {}, &apart, &pieceWay);
-  for (int r = 0; r < h; ++r) {
-    EXPECT_LT(d.finalRow[static_cast<size_t>(r * w + 3)], 0);
-    EXPECT_GE(d.finalRow[static_cast<size_t>(r * w + 2)], 0);
-    EXPECT_GE(d.finalRow[static_cast<size_t>(r * w + 4)], 0);
-  }
-  EXPECT_EQ(d.verticalRemoved, 8 - 0 - (w - 2 - 8 < 0 ? 2 : 0));
+/// Pairs of segments (no shared point) of two ways that touch or cross after carving and did not before,
+/// and pairs of one way that cross (a way may touch itself where its points collapsed onto one spot).
+int newContacts(const std::vector<std::vector<int>>& dense, const std::vector<Vec2>& before,
+                const std::vector<Vec2>& after) {
+  std::vector<std::pair<int, int>> segs;
+  std::vector<size_t> wayOf;
+  for (size_t w = 0; w < dense.size(); ++w)
+    for (size_t i = 1; i < dense[w].size(); ++i)
+      segs.push_back({dense[w][i - 1], dense[w][i]}), wayOf.push_back(w);
+  int count = 0;
+  for (size_t i = 0; i < segs.size(); ++i)
+    for (size_t j = i + 1; j < segs.size(); ++j) {
+      const auto [a, b] = segs[i];
+      const auto [c, d] = segs[j];
+      if (a == c || a == d || b == c || b == d) continue;
+      auto at = [](const std::vector<Vec2>& v, int k) { return v[static_cast<size_t>(k)]; };
+      const SegmentContact now = segmentContact(at(after, a), at(after, b), at(after, c), at(after, d));
+      if ((wayOf[i] == wayOf[j] ? now == SegmentContact::Crossing : now != SegmentContact::None) &&
+          segmentContact(at(before, a), at(before, b), at(before, c), at(before, d)) == SegmentContact::None)
+        ++count;
+    }
+  return count;
 }
 
-TEST(DenseWays, AWayCarriedAlongBySeamsIsKeptApartFromTheWayItReaches) {
-  // Way 0 in column 2, way 1 in column 4, column 3 empty; column 4 is the cheapest, then column 3. The
-  // first seam takes column 4: way 1 collapses onto column 3, now next to way 0, so column 3 must not
-  // go (it would put both ways in one pixel of column 2); the second seam goes elsewhere.
-  const int w = 8, h = 3;
-  std::vector<float> energy(static_cast<size_t>(w * h), 0.0f);
-  std::vector<int> labels(energy.size(), -1);
-  for (int r = 0; r < h; ++r) {
-    labels[static_cast<size_t>(r * w + 2)] = 0, labels[static_cast<size_t>(r * w + 4)] = 1;
-    energy[static_cast<size_t>(r * w + 4)] = -3.0f, energy[static_cast<size_t>(r * w + 3)] = -2.0f;
+TEST(DenseWays, CrossingGuardRemovesEverySeamWithoutMakingWaysMeet) {
+  // Random wandering ways, densified to one point per pixel, on random energies: without the guard
+  // the seams make segments meet that did not; with it none do, every requested seam still goes (the
+  // image has room), and only a few pixels are frozen.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int unguarded = 0;
+  size_t frozen = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    const int w = 40, h = 36;
+    const RasterFrame frame{0.0, static_cast<double>(h), 1.0, w, h};
+    std::vector<Vec2> pos;
+    std::vector<std::vector<int>> ways;
+    for (int k = 0; k < 7; ++k) {
+      std::vector<int> way;
+      Vec2 p{2 + 36 * unit(rng), 2 + 32 * unit(rng)};
+      for (int step = 0; step < 6; ++step) {
+        way.push_back(static_cast<int>(pos.size()));
+        pos.push_back(p);
+        p = {std::clamp(p.x + 12 * (unit(rng) - 0.5), 0.5, w - 0.5),
+             std::clamp(p.y + 12 * (unit(rng) - 0.5), 0.5, h - 0.5)};
+      }
+      ways.push_back(way);
+    }
+    std::vector<Vec2> shadow = pos;
+    const auto dense = densifyWays(ways, 1.0, pos, shadow);
+    std::vector<float> energy(static_cast<size_t>(w * h));
+    for (float& e : energy) e = static_cast<float>(std::floor(8 * unit(rng)));  // many ties
+    const SeamWays sw = seamWaysOf(dense, pos, frame);
+    for (bool guarded : {false, true}) {
+      const CarveResult c =
+          carveSeams(energy, w, h, 10, 8, trial % 2 ? SeamOrder::Interleaved : SeamOrder::Blocks, {},
+                     guarded ? &sw : nullptr);
+      const PointMapper mapper(frame, c);
+      std::vector<Vec2> after(pos.size());
+      for (size_t i = 0; i < pos.size(); ++i) ASSERT_TRUE(mapper.map(pos[i], true, after[i]));
+      const int meets = newContacts(dense, pos, after);
+      if (!guarded) {
+        unguarded += meets;
+        continue;
+      }
+      EXPECT_EQ(meets, 0) << "trial " << trial;
+      EXPECT_EQ(c.verticalRemoved, 10) << "trial " << trial;
+      EXPECT_EQ(c.horizontalRemoved, 8) << "trial " << trial;
+      frozen += c.crossingFrozen;
+    }
   }
-  const std::vector<int> pieceWay{0, 1};
-  const CarveResult c = carveSeams(energy, w, h, 2, 0, SeamOrder::Blocks, {}, &labels, &pieceWay);
-  EXPECT_EQ(c.verticalRemoved, 2);
-  for (int r = 0; r < h; ++r) {
-    EXPECT_LT(c.finalRow[static_cast<size_t>(r * w + 4)], 0);
-    EXPECT_GE(c.finalRow[static_cast<size_t>(r * w + 3)], 0) << "the pixel holding way 1 now";
-    EXPECT_GE(c.finalRow[static_cast<size_t>(r * w + 2)], 0);
-    EXPECT_EQ(c.finalCol[static_cast<size_t>(r * w + 3)], c.finalCol[static_cast<size_t>(r * w + 2)] + 1);
-  }
+  EXPECT_GT(unguarded, 10) << "the test must exercise the guard";
+  EXPECT_GT(frozen, 0u);
+  EXPECT_LT(frozen, 12u * 40u) << "only the pixels where a crossing would arise are frozen";
+}
+
+TEST(DenseWays, CrossingGuardLetsSeamsGoBetweenWaysAPixelApart) {
+  // Two vertical ways in adjacent columns 1 and 2 of a 4-pixel-wide image, zero energy: the old whole
+  // separation froze both columns (2 seams at most); the guard also lets the column of one way go, its
+  // points collapsing onto the edge of the other way's pixel, half a pixel apart: 3 seams.
+  const int w = 4, h = 6;
+  const RasterFrame frame{0.0, static_cast<double>(h), 1.0, w, h};
+  std::vector<Vec2> pos;
+  std::vector<std::vector<int>> ways(2);
+  for (int k = 0; k < 2; ++k)
+    for (int r = 0; r < h; ++r) {
+      ways[static_cast<size_t>(k)].push_back(static_cast<int>(pos.size()));
+      pos.push_back({1.5 + k, h - r - 0.5});
+    }
+  const SeamWays sw = seamWaysOf(ways, pos, frame);
+  const CarveResult c = carveSeams(std::vector<float>(static_cast<size_t>(w * h), 0.0f), w, h, 3, 0,
+                                   SeamOrder::Blocks, {}, &sw);
+  EXPECT_EQ(c.verticalRemoved, 3);
+  const PointMapper mapper(frame, c);
+  std::vector<Vec2> after(pos.size());
+  for (size_t i = 0; i < pos.size(); ++i) ASSERT_TRUE(mapper.map(pos[i], true, after[i]));
+  for (size_t r = 0; r < static_cast<size_t>(h); ++r)
+    EXPECT_NEAR(after[static_cast<size_t>(h) + r].x - after[r].x, 0.5, 1e-12) << "row " << r;
+  EXPECT_EQ(newContacts(ways, pos, after), 0);
 }
 
 }  // namespace
