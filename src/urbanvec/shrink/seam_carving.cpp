@@ -38,6 +38,24 @@ void dpRow(const float* e, const float* p, float* out, int lo, int hi, int w) {
   if (last && c == w - 1) o[w - 1] = e[w - 1] + std::min(p[w - 2], p[w - 1]);
 }
 
+/// Index of the first / last of `n` cells where a and b differ bytewise (n / -1 when none), by blocks
+/// of 16 cells compared with memcmp.
+int firstDifference(const float* a, const float* b, int n) {
+  constexpr int B = 16;
+  int i = 0;
+  while (i + B <= n && std::memcmp(a + i, b + i, B * sizeof(float)) == 0) i += B;
+  while (i < n && std::memcmp(a + i, b + i, sizeof(float)) == 0) ++i;
+  return i;
+}
+
+int lastDifference(const float* a, const float* b, int n) {
+  constexpr int B = 16;
+  int i = n;  // cells [i, n) are equal
+  while (i - B >= 0 && std::memcmp(a + i - B, b + i - B, B * sizeof(float)) == 0) i -= B;
+  while (i > 0 && std::memcmp(a + i - 1, b + i - 1, sizeof(float)) == 0) --i;
+  return i - 1;
+}
+
 /// The image being carved, always carved along its rows (vertical seams); horizontal seams run on the
 /// transposed image. `transposed` says which orientation the buffers hold. Each row keeps its cells
 /// contiguous from `start[r]`: a seam pixel is removed by moving the shorter side of its row by one
@@ -139,14 +157,13 @@ struct Work {
         float* q = M(r);
         dpRow(E(r), M(r - 1), rowScratch.data(), lo, hi, w);
         cellsUpdated += static_cast<size_t>(hi - lo + 1);
-        auto fresh = [&](int c) { return rowScratch[static_cast<size_t>(c - lo)]; };
-        int first = lo;
-        while (first <= hi && fresh(first) == q[first]) ++first;
-        if (first > hi) continue;  // nothing changed in this row: the cone ends here
-        int lastChanged = hi;
-        while (fresh(lastChanged) == q[lastChanged]) --lastChanged;
-        dlo = first, dhi = lastChanged;
-        std::copy(rowScratch.begin() + (dlo - lo), rowScratch.begin() + (dhi - lo + 1), q + dlo);
+        // The values are sums of non-negative floats (no NaN, no -0): equal values are equal bytes.
+        const int n = hi - lo + 1;
+        const int first = firstDifference(rowScratch.data(), q + lo, n);
+        if (first == n) continue;  // nothing changed in this row: the cone ends here
+        const int last = lastDifference(rowScratch.data(), q + lo, n);
+        dlo = lo + first, dhi = lo + last;
+        std::copy(rowScratch.begin() + first, rowScratch.begin() + last + 1, q + dlo);
       }
     }
     removedPending = false;
