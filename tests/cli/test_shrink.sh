@@ -108,6 +108,33 @@ assert len(after) == r["crossings_after"] and len(before) == r["crossings_before
 assert not (after - before) and r["new_crossings"] == 0, ("new crossings", sorted(after - before))
 PY
 
+# Every requested seam goes where a path avoiding the landmarks exists, still with no new crossing: at
+# the default imageSize, shF 0.15 with 100x100 seams removed only 89x100 while whole way separations
+# were frozen; the crossing guard freezes only the pixels where a seam would make two streets meet.
+run_cmd shrink -q -shf 0.15 -seams 100 100 "$OSM" "$OSMI" "$WORK/seams.gpkg"
+expect_status 0
+expect_stderr ""
+r=$(ogrinfo -ro -q "$WORK/seams.gpkg" shrink_report)
+expect_eq "$(echo "$r" | sed -n 's/ *seams_vertical (Real) = //p')x$(echo "$r" | sed -n 's/ *seams_horizontal (Real) = //p')" "100x100" "seams removed at shF 0.15"
+expect_eq "$(echo "$r" | sed -n 's/ *new_crossings (Real) = //p')" "0" "no new crossing with every seam removed"
+expect_eq "$(feature_count "$WORK/seams.gpkg" seams)" "200" "one line per removed seam"
+# The landmarks keep their left-right and above-below order: at shF 0.05 one pair flipped before the
+# guard also checked the order of the landmark places along each seam.
+run_cmd shrink -q -shf 0.05 -seams 100 100 "$OSM" "$OSMI" "$WORK/order.gpkg"
+expect_status 0
+r=$(ogrinfo -ro -q "$WORK/order.gpkg" shrink_report)
+expect_eq "$(echo "$r" | sed -n 's/ *order_violations_x (Real) = //p')/$(echo "$r" | sed -n 's/ *order_violations_y (Real) = //p')" "0/0" "landmark order at shF 0.05"
+expect_eq "$(echo "$r" | sed -n 's/ *seams_vertical (Real) = //p')" "100" "seams removed at shF 0.05"
+# Threads move the rows of images over 2^20 pixels in bands: the output does not depend on them.
+for t in 1 2; do
+  run_cmd shrink -q -threads $t -image-size 1200 -seams 20 20 "$OSM" "$OSMI" "$WORK/threads$t.gpkg"
+  expect_status 0
+done
+for layer in streets seams; do
+  expect_eq "$(ogrinfo -ro -q "$WORK/threads2.gpkg" $layer | grep -v "Open of" | md5sum)" \
+    "$(ogrinfo -ro -q "$WORK/threads1.gpkg" $layer | grep -v "Open of" | md5sum)" "same $layer with 1 and 2 threads"
+done
+
 # Straightening after carving is crossing-safe: at the thesis size with the rotation trick, straightening
 # some ways would cross another (1 new crossing before the check); those keep their carved line.
 run_cmd shrink -q -shf 0.15 -rotate auto -straighten "$OSM" "$OSMI" "$WORK/straight.gpkg"

@@ -277,6 +277,13 @@ class CrossingGuard {
     frac_[0] = w.fx, frac_[1] = w.fy;
     newCell_.resize(n), newFrac_.resize(n), near_.resize(n);
     ways_ = w.ways;
+    places_ = w.places;
+    for (int axis = 0; axis < 2; ++axis) {  // the original order of every pair of places
+      const std::vector<double> c = centroids(axis, false);
+      for (size_t i = 0; i < c.size(); ++i)
+        for (size_t j = i + 1; j < c.size(); ++j)
+          originalOrder_[axis].push_back(c[j] - c[i] > kEps ? 1 : c[j] - c[i] < -kEps ? -1 : 0);
+    }
     pointWay_.assign(n, -1), pointIndex_.assign(n, -1);
     for (size_t k = 0; k < w.ways.size(); ++k)
       for (size_t i = 0; i < w.ways[k].size(); ++i) {
@@ -293,8 +300,10 @@ class CrossingGuard {
 
   /// Moves every point by `seam` (one position along `axis` per line of the other axis: axis 0 for a
   /// vertical seam) into the scratch positions; true when no segment then crosses or touches a segment
-  /// it did not before. Otherwise `banLines` gets the lines of the points of every offending pair.
-  bool check(const std::vector<int>& seam, int axis, std::vector<int>& banLines) {
+  /// it did not before, and no two places change order. Otherwise `banLines` gets the lines of the points
+  /// of every offending segment pair, `orderLines` those of the places the seam would move past another.
+  bool check(const std::vector<int>& seam, int axis, std::vector<int>& banLines,
+             std::vector<int>& orderLines) {
     const int lineAxis = 1 - axis;
     const std::vector<int>& along = cell_[static_cast<size_t>(axis)];
     const std::vector<int>& line = cell_[static_cast<size_t>(lineAxis)];
@@ -331,7 +340,7 @@ class CrossingGuard {
       (axis == 0 ? v.x : v.y) = newCell_[i] + newFrac_[i];
       return v;
     };
-    banLines.clear();
+    banLines.clear(), orderLines.clear();
     for (size_t i = 0; i < cand_.size(); ++i) {
       const Cand& s = cand_[i];
       const Vec2 s1 = after(s.a), s2 = after(s.b);
@@ -364,9 +373,42 @@ class CrossingGuard {
         for (int p : {s.a, s.b, t.a, t.b}) banLines.push_back(line[static_cast<size_t>(p)]);
       }
     }
-    std::sort(banLines.begin(), banLines.end());
-    banLines.erase(std::unique(banLines.begin(), banLines.end()), banLines.end());
-    return banLines.empty();
+    // Landmark arrangement: a pair of places whose order along the axis would flip.
+    if (!places_.empty()) {
+      const std::vector<double> was = centroids(axis, false), now = centroids(axis, true);
+      const std::vector<int>& order = originalOrder_[static_cast<size_t>(axis)];
+      size_t k = 0;
+      for (size_t i = 0; i < now.size(); ++i)
+        for (size_t j = i + 1; j < now.size(); ++j, ++k) {
+          const double d = now[j] - now[i];
+          if (!((order[k] > 0 && d < -kEps) || (order[k] < 0 && d > kEps))) continue;
+          // The place the seam moves (further) is the one it passes before: ban the seam on its lines.
+          const size_t moved = (now[i] - was[i]) < (now[j] - was[j]) ? i : j;
+          for (int p : places_[moved])
+            if (newCell_[static_cast<size_t>(p)] != along[static_cast<size_t>(p)])
+              orderLines.push_back(line[static_cast<size_t>(p)]);
+        }
+    }
+    for (std::vector<int>* v : {&banLines, &orderLines}) {
+      std::sort(v->begin(), v->end());
+      v->erase(std::unique(v->begin(), v->end()), v->end());
+    }
+    return banLines.empty() && orderLines.empty();
+  }
+
+  /// Centroid of each place along `axis`, at the current or (`moved`) the checked positions.
+  std::vector<double> centroids(int axis, bool moved) const {
+    std::vector<double> out;
+    for (const auto& place : places_) {
+      double sum = 0.0;
+      for (int p : place) {
+        const size_t i = static_cast<size_t>(p);
+        sum += moved ? newCell_[i] + newFrac_[i]
+                     : cell_[static_cast<size_t>(axis)][i] + frac_[static_cast<size_t>(axis)][i];
+      }
+      out.push_back(place.empty() ? 0.0 : sum / static_cast<double>(place.size()));
+    }
+    return out;
   }
 
   /// Commits the positions of the last check along `axis`.
@@ -413,7 +455,8 @@ class CrossingGuard {
     return d < kEps ? Contact::Touching : Contact::None;
   }
 
-  std::vector<std::vector<int>> ways_;
+  std::vector<std::vector<int>> ways_, places_;
+  std::vector<int> originalOrder_[2];       ///< per axis, per pair of places: +1, -1 or 0 (tied)
   std::vector<int> pointWay_, pointIndex_;  ///< the first way holding each point, and its place there
   std::vector<int> cell_[2];
   std::vector<double> frac_[2];
@@ -441,7 +484,7 @@ CarveResult carveSeams(const std::vector<float>& energy, int width, int height, 
   std::unique_ptr<CrossingGuard> guard;
   std::vector<char> guardFrozen;  // per original pixel: frozen by the crossing guard
   if (ways) guard = std::make_unique<CrossingGuard>(*ways), guardFrozen.assign(n, 0);
-  std::vector<int> banLines;
+  std::vector<int> banLines, orderLines;
 
   ProgressTicker ticker(progress, "seam carving", static_cast<size_t>(vertical + horizontal));
   int leftV = vertical, leftH = horizontal;
@@ -458,13 +501,15 @@ CarveResult carveSeams(const std::vector<float>& energy, int width, int height, 
     bool found = work.cols > 1;
     while (found) {
       found = work.findSeam();
-      if (!found || !guard || guard->check(work.seam, axis, banLines)) break;
-      for (int line : banLines) {
-        const int c = work.seam[static_cast<size_t>(line)];
-        guardFrozen[static_cast<size_t>(work.X(line)[c])] = 1;
-        work.ban(line, c);
-        ++result.crossingFrozen;
-      }
+      if (!found || !guard || guard->check(work.seam, axis, banLines, orderLines)) break;
+      for (const std::vector<int>* lines : {&banLines, &orderLines})
+        for (int line : *lines) {
+          const int c = work.seam[static_cast<size_t>(line)];
+          if (std::isinf(work.E(line)[c])) continue;  // a line of both lists
+          guardFrozen[static_cast<size_t>(work.X(line)[c])] = 1;
+          work.ban(line, c);
+          ++(lines == &banLines ? result.crossingFrozen : result.orderFrozen);
+        }
       ++result.seamRetries;
     }
     if (!found) {

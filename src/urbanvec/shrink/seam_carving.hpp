@@ -27,6 +27,9 @@ struct SeamWays {
   std::vector<int> col, row;
   std::vector<double> fx, fy;
   std::vector<std::vector<int>> ways;
+  /// Landmark places: the points of each (their centroid is the place's position): no seam may flip the
+  /// left-right or above-below order of two places' centroids (issue 19 "arrangement").
+  std::vector<std::vector<int>> places;
 };
 
 struct CarveResult {
@@ -50,6 +53,8 @@ struct CarveResult {
   /// Crossing guard: pixels given +infinity because the seam through them would have made two way
   /// segments cross or touch, and the seams that had to be searched again because of that.
   size_t crossingFrozen = 0;
+  /// Pixels given +infinity because the seam through them would have flipped two landmark places.
+  size_t orderFrozen = 0;
   size_t seamRetries = 0;
   /// Cumulative-energy cells recomputed, over all seam searches (the O(pixels) per seam bound).
   size_t cellsUpdated = 0;
@@ -67,7 +72,9 @@ struct CarveResult {
 /// onto); when a segment of a way would then cross or touch a segment it did not touch before (another
 /// way's or its own), the seam's pixels on the lines of those segments' points get +infinity and the
 /// seam is searched again. So no seam ever makes two ways cross, and only the pixels where a crossing
-/// would really arise are frozen.
+/// would really arise are frozen. Likewise when the seam would flip the order (along its axis) of two
+/// landmark places' centroids relative to the original: the seam's pixels on the lines of the points of
+/// the place it moves get +infinity.
 ///
 /// `threads` (0 = every core) move the rows of large images in bands; the result does not depend on it.
 CarveResult carveSeams(const std::vector<float>& energy, int width, int height, int vertical, int horizontal,

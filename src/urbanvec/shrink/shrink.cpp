@@ -325,7 +325,15 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
   const std::vector<float> energy = seamEnergy(raster, options.carving.grayDistBalance);
   // The crossing guard of seam carving: every dense point in pixel units, as PointMapper places it.
   SeamWays seamWays;
-  if (dense && options.carving.separateWays) seamWays = seamWaysOf(wayPoints, pointPos, frame);
+  if (dense && options.carving.separateWays) {
+    seamWays = seamWaysOf(wayPoints, pointPos, frame);
+    for (int p : skeleton.places) {  // each place's nodes, as the arrangement measure takes them
+      std::vector<int> nodes;
+      for (const auto& shape : places[static_cast<size_t>(p)].shapes)
+        nodes.insert(nodes.end(), shape.begin(), shape.end());
+      if (!nodes.empty()) seamWays.places.push_back(std::move(nodes));
+    }
+  }
   size_t frozenPixels = 0;
   for (int owner : raster.freezeOwner) frozenPixels += owner != kNotFrozen;
   put("frozen_pixels", static_cast<double>(frozenPixels));
@@ -337,6 +345,7 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
                  options.carving.horizontalSeams, options.carving.order, subProgress(progress, 0.25, 0.85),
                  seamWays.ways.empty() ? nullptr : &seamWays, options.carving.threads);
   put("crossing_guard_pixels", static_cast<double>(carve.crossingFrozen));
+  put("landmark_order_guard_pixels", static_cast<double>(carve.orderFrozen));
   put("crossing_guard_retries", static_cast<double>(carve.seamRetries));
   put("cumulative_cells_per_seam", carve.seams.empty() ? 0.0
                                                        : static_cast<double>(carve.cellsUpdated) /
@@ -376,14 +385,17 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
                            : " by the landmark" + std::string(owners.size() > 2 ? "s " : " ") + names +
                                  (owners.count(kFrozenStreetNode) ? " and street intersections" : "");
     } else if (vertical ? carve.verticalBlockedByGuard : carve.horizontalBlockedByGuard) {
-      why = "every remaining path crosses a pixel the crossing guard froze (" +
-            std::to_string(carve.crossingFrozen) +
-            " pixels where a seam would have made two streets cross or touch); a path avoiding the landmarks "
-            "and street intersections alone exists";
+      why = "every remaining path crosses a pixel the guard froze (" + std::to_string(carve.crossingFrozen) +
+            " pixels where a seam would have made two streets cross or touch, " +
+            std::to_string(carve.orderFrozen) +
+            " where it would have flipped the order of two landmarks); a path avoiding the landmarks and "
+            "street "
+            "intersections alone exists";
     } else {
-      why = "every path across the image crosses a frozen pixel (landmarks, street intersections, and the " +
+      why = "every path across the image crosses a frozen pixel (landmarks, street intersections, the " +
             std::to_string(carve.crossingFrozen) +
-            " pixels where a seam would have made two streets cross or touch)";
+            " pixels where a seam would have made two streets cross or touch and the " +
+            std::to_string(carve.orderFrozen) + " where it would have flipped the order of two landmarks)";
     }
     report.notes.push_back(std::string(dir) + " seams " + seamRange(removed + 1, requested) + " of " +
                            std::to_string(requested) + " could not be removed: " + why);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -176,6 +177,35 @@ TEST(DenseWays, CrossingGuardLetsSeamsGoBetweenWaysAPixelApart) {
   for (size_t r = 0; r < static_cast<size_t>(h); ++r)
     EXPECT_NEAR(after[static_cast<size_t>(h) + r].x - after[r].x, 0.5, 1e-12) << "row " << r;
   EXPECT_EQ(newContacts(ways, pos, after), 0);
+}
+
+TEST(DenseWays, GuardKeepsTheOrderOfTwoLandmarks) {
+  // Landmark A at x 5.9 (row 2), landmark B at x 6.1 (row 6), both frozen. The cheapest seam runs in
+  // column 6 above row 6 (right of A) and column 5 from row 6 (left of B): it would move B one pixel
+  // left of A. Guarded, the seam goes elsewhere and A stays left of B; every seam is still removed.
+  const int w = 12, h = 8;
+  const RasterFrame frame{0.0, static_cast<double>(h), 1.0, w, h};
+  std::vector<float> energy(static_cast<size_t>(w * h), 1.0f);
+  for (int r = 0; r < h; ++r) energy[static_cast<size_t>(r * w + (r < 6 ? 6 : 5))] = 0.0f;
+  energy[static_cast<size_t>(2 * w + 5)] = energy[static_cast<size_t>(6 * w + 6)] =
+      std::numeric_limits<float>::infinity();
+  const std::vector<Vec2> pos{{5.9, h - 2.5}, {6.1, h - 6.5}};
+  SeamWays sw = seamWaysOf({}, pos, frame);
+  sw.places = {{0}, {1}};
+  for (bool guarded : {false, true}) {
+    const CarveResult c = carveSeams(energy, w, h, 3, 0, SeamOrder::Blocks, {}, guarded ? &sw : nullptr);
+    EXPECT_EQ(c.verticalRemoved, 3);
+    const PointMapper mapper(frame, c);
+    Vec2 a, b;
+    ASSERT_TRUE(mapper.map(pos[0], true, a));
+    ASSERT_TRUE(mapper.map(pos[1], true, b));
+    if (guarded) {
+      EXPECT_LT(a.x, b.x);
+      EXPECT_GT(c.orderFrozen, 0u);
+    } else {
+      EXPECT_GT(a.x, b.x) << "the test must exercise the guard";
+    }
+  }
 }
 
 }  // namespace
