@@ -34,8 +34,11 @@ measure() {  # measure <label> <args...>
 }
 
 echo "load: $(cut -d' ' -f1-3 /proc/loadavg) on $(nproc) cores"
+trap 'echo "load at the end: $(cut -d" " -f1-3 /proc/loadavg)"; rm -rf "$OUT"' EXIT
 measure "imageSize 500, 100x100 seams" -image-size 500 -seams 100 100
 measure "imageSize 2000, 400x400 seams" -image-size 2000 -seams 400 400
+measure "imageSize 2000, 400x400, -threads 1" -image-size 2000 -seams 400 400 -threads 1
+measure "imageSize 2000, 400x400, -threads 2" -image-size 2000 -seams 400 400 -threads 2
 for s in 50 100 200 400; do
   measure "imageSize 2000, ${s}x0 seams" -image-size 2000 -seams "$s" 0
 done
