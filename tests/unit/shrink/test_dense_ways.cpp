@@ -179,6 +179,43 @@ TEST(DenseWays, CrossingGuardLetsSeamsGoBetweenWaysAPixelApart) {
   EXPECT_EQ(newContacts(ways, pos, after), 0);
 }
 
+TEST(DenseWays, GuardSaysWhenItsPixelsBlockTheSeams) {
+  // Ten random ways packed into a 12x10 image, zero energy: without the guard all 10 seams go; with it
+  // the last ones cannot (every path would make ways meet), no line is frozen from edge to edge, and
+  // the result says that a path would exist without the guard's pixels (the reason the report gives).
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const int w = 12, h = 10;
+  const RasterFrame frame{0.0, static_cast<double>(h), 1.0, w, h};
+  std::vector<Vec2> pos;
+  std::vector<std::vector<int>> ways;
+  for (int k = 0; k < 10; ++k) {
+    std::vector<int> way;
+    Vec2 p{0.1 + 11.8 * unit(rng), 0.1 + 9.8 * unit(rng)};
+    for (int step = 0; step < 4; ++step) {
+      way.push_back(static_cast<int>(pos.size()));
+      pos.push_back(p);
+      p = {std::clamp(p.x + 8 * (unit(rng) - 0.5), 0.1, w - 0.1),
+           std::clamp(p.y + 8 * (unit(rng) - 0.5), 0.1, h - 0.1)};
+    }
+    ways.push_back(way);
+  }
+  std::vector<Vec2> shadow = pos;
+  const auto dense = densifyWays(ways, 1.0, pos, shadow);
+  const std::vector<float> energy(static_cast<size_t>(w * h), 0.0f);
+  EXPECT_EQ(carveSeams(energy, w, h, 10, 0, SeamOrder::Blocks).verticalRemoved, 10);
+  const SeamWays sw = seamWaysOf(dense, pos, frame);
+  const CarveResult c = carveSeams(energy, w, h, 10, 0, SeamOrder::Blocks, {}, &sw);
+  EXPECT_LT(c.verticalRemoved, 10);
+  EXPECT_GT(c.verticalRemoved, 0);
+  EXPECT_EQ(c.verticalBlockedAt, -1);
+  EXPECT_TRUE(c.verticalBlockedByGuard);
+  const PointMapper mapper(frame, c);
+  std::vector<Vec2> after(pos.size());
+  for (size_t i = 0; i < pos.size(); ++i) ASSERT_TRUE(mapper.map(pos[i], true, after[i]));
+  EXPECT_EQ(newContacts(dense, pos, after), 0);
+}
+
 TEST(DenseWays, GuardKeepsTheOrderOfTwoLandmarks) {
   // Landmark A at x 5.9 (row 2), landmark B at x 6.1 (row 6), both frozen. The cheapest seam runs in
   // column 6 above row 6 (right of A) and column 5 from row 6 (left of B): it would move B one pixel
