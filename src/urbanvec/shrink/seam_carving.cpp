@@ -275,7 +275,7 @@ class CrossingGuard {
     const size_t n = w.col.size();
     cell_[0] = w.col, cell_[1] = w.row;
     frac_[0] = w.fx, frac_[1] = w.fy;
-    newCell_.resize(n), newFrac_.resize(n), near_.resize(n);
+    newCell_.resize(n), newFrac_.resize(n), distance_.resize(n);
     ways_ = w.ways;
     places_ = w.places;
     for (int axis = 0; axis < 2; ++axis) {  // the original order of every pair of places
@@ -310,7 +310,7 @@ class CrossingGuard {
     const std::vector<double>& frac = frac_[static_cast<size_t>(axis)];
     for (size_t i = 0; i < along.size(); ++i) {
       const int s = seam[static_cast<size_t>(line[i])], c = along[i];
-      near_[i] = std::abs(c - s) <= kNear;
+      distance_[i] = std::abs(c - s);
       if (c < s)
         newCell_[i] = c, newFrac_[i] = frac[i];
       else if (c > s)
@@ -320,11 +320,18 @@ class CrossingGuard {
       else  // the first pixel collapses onto the left edge of its right neighbour, now the first
         newCell_[i] = 0, newFrac_[i] = 0.0;
     }
+    // Segments can grow along the axis (their ends on two lines move differently): the reach covers
+    // the longest one, so a segment beyond it (on lines next to each other) stays apart from every
+    // candidate. A segment spanning more than two lines may pass the seam between its ends: always a
+    // candidate.
+    int longest = 0;
+    for (const auto& [a, b] : segs_)
+      longest = std::max(longest, std::abs(along[static_cast<size_t>(a)] - along[static_cast<size_t>(b)]));
+    const int reach = kNear + longest;
     cand_.clear();
     for (const auto& [a, b] : segs_) {
       const size_t ia = static_cast<size_t>(a), ib = static_cast<size_t>(b);
-      if (near_[ia] || near_[ib] || std::abs(along[ia] - along[ib]) >= 2 ||
-          std::abs(line[ia] - line[ib]) >= 2)
+      if (std::min(distance_[ia], distance_[ib]) <= reach || std::abs(line[ia] - line[ib]) >= 2)
         cand_.push_back({std::min(line[ia], line[ib]), std::max(line[ia], line[ib]), a, b});
     }
     std::sort(cand_.begin(), cand_.end(), [](const Cand& x, const Cand& y) {
@@ -426,9 +433,10 @@ class CrossingGuard {
   /// Closer than this (pixels) counts as touching: the output coordinates are computed differently
   /// (metres), so a near-touch here must not become a crossing there.
   static constexpr double kEps = 1e-6;
-  /// A segment with no point within this many pixels of the seam along its lines cannot meet a new
-  /// segment: the seam moves points by at most one pixel and segments span at most one pixel.
-  static constexpr int kNear = 3;
+  /// A segment with no point within this many pixels (plus the longest segment's extent along the axis)
+  /// of the seam on its lines cannot meet a segment it did not meet: the seam moves points by at most one
+  /// pixel along the axis, and the seam's place differs by at most one between neighbouring lines.
+  static constexpr int kNear = 4;
 
   /// How segments a1a2 (at p1p2) and b1b2 (at q1q2) meet; `joined(a, b)` says when two distinct points
   /// count as one.
@@ -462,7 +470,7 @@ class CrossingGuard {
   std::vector<double> frac_[2];
   std::vector<int> newCell_;
   std::vector<double> newFrac_;
-  std::vector<char> near_;
+  std::vector<int> distance_;  ///< per point: pixels between it and the seam on its line
   std::vector<std::pair<int, int>> segs_;
   std::vector<Cand> cand_;
 };
