@@ -234,12 +234,16 @@ struct Work {
     }
   }
 
-  /// A row (of the current buffers) frozen from edge to edge: the original index of its first pixel,
-  /// else -1.
-  int frozenLine() {
+  /// A row (of the current buffers) frozen from edge to edge by pixels other than those with
+  /// `unfrozen[original index]` (the guard's): the original index of its first pixel, else -1.
+  int frozenLine(const std::vector<char>& unfrozen) {
     for (int r = 0; r < rows; ++r) {
       const float* e = E(r);
-      if (std::all_of(e, e + cols, [](float v) { return std::isinf(v); })) return X(r)[0];
+      const std::int32_t* x = X(r);
+      bool all = true;
+      for (int c = 0; c < cols && all; ++c)
+        all = std::isinf(e[c]) && (unfrozen.empty() || !unfrozen[static_cast<size_t>(x[c])]);
+      if (all) return x[0];
     }
     return -1;
   }
@@ -522,7 +526,7 @@ CarveResult carveSeams(const std::vector<float>& energy, int width, int height, 
     }
     if (!found) {
       (doVertical ? blockedV : blockedH) = true;
-      const int line = work.frozenLine();
+      const int line = work.frozenLine(guardFrozen);
       (doVertical ? result.verticalBlockedAt : result.horizontalBlockedAt) = line;
       if (line < 0 && guard && work.cols > 1 && work.pathExistsWithout(guardFrozen))
         (doVertical ? result.verticalBlockedByGuard : result.horizontalBlockedByGuard) = true;
