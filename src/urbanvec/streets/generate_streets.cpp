@@ -11,6 +11,7 @@
 #include "urbanvec/core/landuse.hpp"
 #include "urbanvec/core/planar_graph.hpp"
 #include "urbanvec/core/random.hpp"
+#include "urbanvec/core/uniform_grid.hpp"
 #include "urbanvec/gridify/untagged_land.hpp"
 #include "urbanvec/streets/graph_noise.hpp"
 #include "urbanvec/streets/polygon_index.hpp"
@@ -22,33 +23,24 @@ namespace {
 class LevelLookup {
  public:
   LevelLookup(const std::vector<Street>& streets, const Vec2& lo, const Vec2& hi, double cell)
-      : origin_(lo), cell_(cell) {
-    nx_ = static_cast<int>((hi.x - lo.x) / cell) + 1;
-    ny_ = static_cast<int>((hi.y - lo.y) / cell) + 1;
-    cells_.assign(static_cast<std::size_t>(nx_) * ny_, {});
-    for (std::size_t s = 0; s < streets.size(); ++s)
-      for (std::size_t i = 0; i + 1 < streets[s].line.size(); ++i) {
-        // Every cell of the segment's box: an existing road's segment can be far longer than a cell.
-        const Vec2 a = streets[s].line[i], b = streets[s].line[i + 1];
-        const int i0 = col(std::min(a.x, b.x)), i1 = col(std::max(a.x, b.x));
-        const int j0 = row(std::min(a.y, b.y)), j1 = row(std::max(a.y, b.y));
-        for (int j = j0; j <= j1; ++j)
-          for (int k = i0; k <= i1; ++k)
-            cells_[static_cast<std::size_t>(j) * nx_ + k].push_back({a, b, streets[s].level});
-      }
+      : grid_(lo, hi, cell) {
+    // Every bucket of a segment's box: an existing road's segment can be far longer than a bucket.
+    for (const Street& s : streets)
+      for (std::size_t i = 0; i + 1 < s.line.size(); ++i)
+        grid_.insert(s.line[i], s.line[i + 1], {s.line[i], s.line[i + 1], s.level});
   }
   /// The level of the nearest street within maxDistance, else Outline.
   StreetLevel at(const Vec2& p, double maxDistance) const {
-    const int ci = col(p.x), cj = row(p.y);
     double best = std::numeric_limits<double>::infinity();
     StreetLevel level = StreetLevel::Minor;
-    for (int j = std::max(0, cj - 1); j <= std::min(ny_ - 1, cj + 1); ++j)
-      for (int i = std::max(0, ci - 1); i <= std::min(nx_ - 1, ci + 1); ++i)
-        for (const Seg& s : cells_[static_cast<std::size_t>(j) * nx_ + i]) {
-          const double d = distanceToSegment(p, s.a, s.b);
-          // Ties (streets through the same point) go to an existing road, then to a major street.
-          if (d < best - 1e-9 || (d <= best + 1e-9 && rank(s.level) > rank(level))) best = d, level = s.level;
-        }
+    const double reach = grid_.cell();
+    grid_.forBox(p - Vec2{reach, reach}, p + Vec2{reach, reach}, [&](const std::vector<Seg>& bucket) {
+      for (const Seg& s : bucket) {
+        const double d = distanceToSegment(p, s.a, s.b);
+        // Ties (streets through the same point) go to an existing road, then to a major street.
+        if (d < best - 1e-9 || (d <= best + 1e-9 && rank(s.level) > rank(level))) best = d, level = s.level;
+      }
+    });
     return best <= maxDistance ? level : StreetLevel::Outline;
   }
 
@@ -58,12 +50,7 @@ class LevelLookup {
     Vec2 a, b;
     StreetLevel level;
   };
-  int col(double x) const { return std::clamp(static_cast<int>((x - origin_.x) / cell_), 0, nx_ - 1); }
-  int row(double y) const { return std::clamp(static_cast<int>((y - origin_.y) / cell_), 0, ny_ - 1); }
-  Vec2 origin_;
-  double cell_;
-  int nx_ = 0, ny_ = 0;
-  std::vector<std::vector<Seg>> cells_;
+  UniformGrid<Seg> grid_;
 };
 
 /// GEOS 3.11's snap-rounding noder keeps its hot pixels in a KD-tree that degenerates into a list

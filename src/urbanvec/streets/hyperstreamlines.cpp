@@ -12,56 +12,17 @@
 #include <utility>
 
 #include "urbanvec/core/error.hpp"
+#include "urbanvec/core/uniform_grid.hpp"
 #include "urbanvec/streets/polygon_index.hpp"
 
 namespace urbanvec::streets {
 namespace {
 
-/// Square buckets over the domain (§9.4 spatial acceleration), holding items of type T.
-template <class T>
-class BucketGrid {
- public:
-  void init(const Vec2& lo, const Vec2& hi, double cell) {
-    origin_ = lo, cell_ = cell;
-    nx_ = static_cast<int>((hi.x - lo.x) / cell) + 1;
-    ny_ = static_cast<int>((hi.y - lo.y) / cell) + 1;
-    cells_.assign(static_cast<std::size_t>(nx_) * ny_, {});
-  }
-  bool empty() const { return cells_.empty(); }
-  /// Calls fn(bucket) for each bucket overlapping the box spanned by a and b (clamped to the grid).
-  template <class Fn>
-  void forBox(const Vec2& a, const Vec2& b, Fn fn) const {
-    if (cells_.empty()) return;
-    const int i0 = col(std::min(a.x, b.x)), i1 = col(std::max(a.x, b.x));
-    const int j0 = row(std::min(a.y, b.y)), j1 = row(std::max(a.y, b.y));
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) fn(cells_[static_cast<std::size_t>(j) * nx_ + i]);
-  }
-  template <class Fn>
-  void forBoxMutable(const Vec2& a, const Vec2& b, Fn fn) {
-    std::as_const(*this).forBox(a, b, [&](const std::vector<T>& c) { fn(const_cast<std::vector<T>&>(c)); });
-  }
-
- private:
-  int col(double x) const {
-    return std::clamp(static_cast<int>(std::floor((x - origin_.x) / cell_)), 0, nx_ - 1);
-  }
-  int row(double y) const {
-    return std::clamp(static_cast<int>(std::floor((y - origin_.y) / cell_)), 0, ny_ - 1);
-  }
-  Vec2 origin_;
-  double cell_ = 1.0;
-  int nx_ = 0, ny_ = 0;
-  std::vector<std::vector<T>> cells_;
-};
-
 /// Points of finished lines, for the d_sep / d_test distance queries.
 class PointGrid {
  public:
   void init(const Vec2& lo, const Vec2& hi, double cell) { grid_.init(lo, hi, cell); }
-  void add(const Vec2& p) {
-    grid_.forBoxMutable(p, p, [&](std::vector<Vec2>& c) { c.push_back(p); });
-  }
+  void add(const Vec2& p) { grid_.insert(p, p); }
   /// True when some point lies closer than r to p.
   bool anyWithin(const Vec2& p, double r) const {
     const double r2 = r * r;
@@ -76,7 +37,7 @@ class PointGrid {
   }
 
  private:
-  BucketGrid<Vec2> grid_;
+  UniformGrid<Vec2> grid_;  // §9.4 spatial acceleration
 };
 
 /// Segments of finished lines, for crossings (look-ahead joins, minor roads ending on major).
@@ -86,7 +47,7 @@ class SegmentGrid {
   void add(const Vec2& a, const Vec2& b) {
     const int id = static_cast<int>(segs_.size());
     segs_.push_back({a, b});
-    grid_.forBoxMutable(a, b, [&](std::vector<int>& c) { c.push_back(id); });
+    grid_.insert(a, b, id);
   }
   /// The first crossing of p→q with a stored segment at a fraction t > minT, or t > 1 when none.
   double firstCrossing(const Vec2& p, const Vec2& q, double minT = 0.0) const {
@@ -106,7 +67,7 @@ class SegmentGrid {
   }
 
  private:
-  BucketGrid<int> grid_;
+  UniformGrid<int> grid_;
   std::vector<std::pair<Vec2, Vec2>> segs_;
 };
 
