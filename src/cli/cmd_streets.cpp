@@ -63,6 +63,10 @@ app::CommandSpec spec() {
   o.push_back(option("-roads", ValueType::String, "<file>",
                      "Existing roads (line layer) whose segments shape the field and seed the major roads.")
                   .withRole(Role::InputVector));
+  o.push_back(option("-keep-roads", ValueType::Flag, "",
+                     "Keep the -roads (after -where) in the network, clipped to the boundary, and grow the "
+                     "traced roads around them: minor roads end on them in T-junctions (spec 14, local "
+                     "editing of an existing network)."));
   o.push_back(option("-roads-layer", ValueType::String, "<name>", "Layer of -roads; default the first."));
   o.push_back(
       option("-where", ValueType::String, "<expression>",
@@ -169,9 +173,12 @@ app::CommandSpec spec() {
                   .atMost(1));
   o.push_back(app::seedOption());
   o.push_back(option("-no-minor", ValueType::Flag, "", "Trace the major roads only."));
-  o.push_back(option("-default-use", ValueType::String, "<class>",
-                     "Land use of blocks (gridify class name) where the density is positive or not given.")
-                  .byDefault(d.defaultUse));
+  o.push_back(
+      option("-default-use", ValueType::String, "<class>",
+             "Land use (gridify class name) of blocks that gridify's untagged-land rule leaves to its "
+             "default: where the density is positive or not given and under half of the block's edge "
+             "is residential (minor) streets.")
+          .byDefault(d.defaultUse));
   o.push_back(
       option("-t_srs", ValueType::String, "<crs>", "Output CRS (projected, metres); default the boundary's.")
           .withRole(Role::Crs));
@@ -399,7 +406,10 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
     if (input.fieldLines.empty())
       throw invalidInput("-roads '" + args.str("-roads") + "' holds no line" +
                          (args.given("-where") ? " where " + args.str("-where") : ""));
+    if (args.flag("-keep-roads")) input.existingRoads = input.fieldLines;
   }
+  if (args.flag("-keep-roads") && !args.given("-roads"))
+    throw invalidOption("-keep-roads needs -roads: it keeps those roads in the network");
   if (args.given("-field-lines")) {
     const std::vector<LineString> more = app::linesOf(optionalLayer("-field-lines", nullptr, nullptr).layer);
     input.fieldLines.insert(input.fieldLines.end(), more.begin(), more.end());
@@ -439,14 +449,17 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
                      {{"street_id", FieldType::Integer},
                       {"class", FieldType::String},
                       {"highway", FieldType::String},
+                      {"source", FieldType::String},
                       {"length", FieldType::Real}},
                      {}};
   std::int64_t id = 0;
   for (const streets::StreetEdge& e : net.streets) {
-    const bool major = e.level == streets::StreetLevel::Major;
-    streetsLayer.features.push_back({e.line,
-                                     {++id, std::string(major ? "major" : "minor"),
-                                      std::string(major ? "primary" : "residential"), length(e.line)}});
+    const bool existing = e.level == streets::StreetLevel::Existing;
+    const bool major = existing || e.level == streets::StreetLevel::Major;
+    streetsLayer.features.push_back(
+        {e.line,
+         {++id, std::string(major ? "major" : "minor"), std::string(major ? "primary" : "residential"),
+          std::string(existing ? "existing" : "traced"), length(e.line)}});
   }
   Layer nodesLayer{"street_nodes",
                    GeometryType::Point,

@@ -115,6 +115,23 @@ east=$(ogrinfo -ro -q -dialect sqlite -sql "SELECT SUM(ST_Length(geom)) AS l FRO
 awk -v w="${west:-0}" -v e="${east:-0}" 'BEGIN { exit !(e > 1.5 * w) }' || fail "street length west $west, east $east: density does not widen the spacing"
 [ "$(q "$WORK/dense.gpkg" "SELECT COUNT(*) AS n FROM blocks WHERE land_use = 'unused'")" -gt 0 ] || fail "no unused block where the density is 0"
 
+# -keep-roads (spec §14): the given roads stay in the network, clipped to the boundary (this one runs
+# 500 m out of it), and the traced roads grow around them.
+cat >"$WORK/roads.csv" <<'CSV'
+id,WKT
+1,"LINESTRING(449500 5551000,450700 5551040,451300 5551040,452000 5551100)"
+2,"LINESTRING(451000 5550000,451000 5550700)"
+CSV
+ogr2ogr -q -f GPKG -a_srs EPSG:32633 -nln roads "$WORK/roads.gpkg" "$WORK/roads.csv"
+run_cmd streets -q -boundary "$WORK/boundary.gpkg" -roads "$WORK/roads.gpkg" -keep-roads -dsep-major 300 "$WORK/kept.gpkg"
+expect_status 0
+kept=$(ogrinfo -ro -q -dialect sqlite -sql "SELECT SUM(ST_Length(geom)) AS l FROM streets WHERE source = 'existing'" "$WORK/kept.gpkg" | sed -n 's/^  l (Real) = //p')
+awk -v k="${kept:-0}" 'BEGIN { exit !(k > 2702.94 && k < 2702.97) }' || fail "kept roads are $kept m long, not the 2702.96 m inside the boundary"
+traced=$(ogrinfo -ro -q -dialect sqlite -sql "SELECT COUNT(*) AS n FROM streets WHERE source = 'traced'" "$WORK/kept.gpkg" | sed -n 's/^  n (Integer.*) = //p')
+[ "${traced:-0}" -gt 100 ] || fail "only ${traced:-0} traced streets around the kept roads"
+run_cmd streets -q -boundary "$WORK/boundary.gpkg" -roads "$WORK/roads.gpkg" -dsep-major 300 "$WORK/notkept.gpkg"
+expect_eq "$(ogrinfo -ro -q -sql "SELECT COUNT(*) AS n FROM streets WHERE source = 'existing'" "$WORK/notkept.gpkg" | sed -n 's/^  n (Integer.*) = //p')" "0" "roads kept without -keep-roads"
+
 # Bad input: one ERROR line, exit status, nothing written.
 bad() {  # bad <status> <expected stderr substring> <args...>
   local status=$1 msg=$2
@@ -128,6 +145,7 @@ bad() {  # bad <status> <expected stderr substring> <args...>
   expect_no_temp "$WORK"
 }
 bad 1 "ERROR: the street design is empty" -boundary "$WORK/boundary.gpkg"
+bad 2 "ERROR: -keep-roads needs -roads" -boundary "$WORK/boundary.gpkg" -design "$WORK/design.json" -keep-roads
 printf '{"elements": []}\n' >"$WORK/empty.json"
 bad 1 "ERROR: -design '$WORK/empty.json' holds no design element" -boundary "$WORK/boundary.gpkg" -design "$WORK/empty.json"
 bad 1 "ERROR: -design '$WORK/missing.json' cannot be read" -boundary "$WORK/boundary.gpkg" -design "$WORK/missing.json"

@@ -8,8 +8,11 @@
 
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/core/geos.hpp"
+#include "urbanvec/core/landuse.hpp"
 #include "urbanvec/core/planar_graph.hpp"
 #include "urbanvec/core/random.hpp"
+#include "urbanvec/core/uniform_grid.hpp"
+#include "urbanvec/gridify/untagged_land.hpp"
 #include "urbanvec/streets/graph_noise.hpp"
 #include "urbanvec/streets/polygon_index.hpp"
 
@@ -20,47 +23,34 @@ namespace {
 class LevelLookup {
  public:
   LevelLookup(const std::vector<Street>& streets, const Vec2& lo, const Vec2& hi, double cell)
-      : origin_(lo), cell_(cell) {
-    nx_ = static_cast<int>((hi.x - lo.x) / cell) + 1;
-    ny_ = static_cast<int>((hi.y - lo.y) / cell) + 1;
-    cells_.assign(static_cast<std::size_t>(nx_) * ny_, {});
-    for (std::size_t s = 0; s < streets.size(); ++s)
-      for (std::size_t i = 0; i + 1 < streets[s].line.size(); ++i) {
-        const Vec2 m = (streets[s].line[i] + streets[s].line[i + 1]) * 0.5;
-        cells_[index(m)].push_back({streets[s].line[i], streets[s].line[i + 1], streets[s].level});
-      }
+      : grid_(lo, hi, cell) {
+    // Every bucket of a segment's box: an existing road's segment can be far longer than a bucket.
+    for (const Street& s : streets)
+      for (std::size_t i = 0; i + 1 < s.line.size(); ++i)
+        grid_.insert(s.line[i], s.line[i + 1], {s.line[i], s.line[i + 1], s.level});
   }
   /// The level of the nearest street within maxDistance, else Outline.
   StreetLevel at(const Vec2& p, double maxDistance) const {
-    const int ci = std::clamp(static_cast<int>((p.x - origin_.x) / cell_), 0, nx_ - 1);
-    const int cj = std::clamp(static_cast<int>((p.y - origin_.y) / cell_), 0, ny_ - 1);
     double best = std::numeric_limits<double>::infinity();
     StreetLevel level = StreetLevel::Minor;
-    for (int j = std::max(0, cj - 1); j <= std::min(ny_ - 1, cj + 1); ++j)
-      for (int i = std::max(0, ci - 1); i <= std::min(nx_ - 1, ci + 1); ++i)
-        for (const Seg& s : cells_[static_cast<std::size_t>(j) * nx_ + i]) {
-          const double d = distanceToSegment(p, s.a, s.b);
-          // Ties (a major and a minor street through the same point) go to the major street.
-          if (d < best - 1e-9 || (d <= best + 1e-9 && s.level == StreetLevel::Major))
-            best = d, level = s.level;
-        }
+    const double reach = grid_.cell();
+    grid_.forBox(p - Vec2{reach, reach}, p + Vec2{reach, reach}, [&](const std::vector<Seg>& bucket) {
+      for (const Seg& s : bucket) {
+        const double d = distanceToSegment(p, s.a, s.b);
+        // Ties (streets through the same point) go to an existing road, then to a major street.
+        if (d < best - 1e-9 || (d <= best + 1e-9 && rank(s.level) > rank(level))) best = d, level = s.level;
+      }
+    });
     return best <= maxDistance ? level : StreetLevel::Outline;
   }
 
  private:
+  static int rank(StreetLevel l) { return l == StreetLevel::Existing ? 2 : l == StreetLevel::Major ? 1 : 0; }
   struct Seg {
     Vec2 a, b;
     StreetLevel level;
   };
-  std::size_t index(const Vec2& p) const {
-    const int i = std::clamp(static_cast<int>((p.x - origin_.x) / cell_), 0, nx_ - 1);
-    const int j = std::clamp(static_cast<int>((p.y - origin_.y) / cell_), 0, ny_ - 1);
-    return static_cast<std::size_t>(j) * nx_ + i;
-  }
-  Vec2 origin_;
-  double cell_;
-  int nx_ = 0, ny_ = 0;
-  std::vector<std::vector<Seg>> cells_;
+  UniformGrid<Seg> grid_;
 };
 
 /// GEOS 3.11's snap-rounding noder keeps its hot pixels in a KD-tree that degenerates into a list
@@ -140,6 +130,20 @@ StreetNetwork generateStreets(const StreetsInput& input, const StreetsOptions& o
   domain.land = input.boundary;
   domain.water = input.water;
   domain.parks = input.parks;
+  if (!input.existingRoads.empty()) {
+    // §14: the existing roads inside the boundary (their parts outside it are not this network's).
+    geos::Context ctx;
+    const geos::GeomPtr boundary = ctx.multiPolygon(input.boundary);
+    for (const LineString& l : input.existingRoads) {
+      if (l.size() < 2) continue;
+      const geos::GeomPtr inside =
+          ctx.own(GEOSIntersection_r(ctx.handle(), ctx.lineString(l).get(), boundary.get()),
+                  "clipping an existing road to the boundary");
+      for (LineString& part : ctx.toLines(inside.get()))
+        if (part.size() >= 2 && length(part) > options.nodingTolerance)
+          domain.existing.push_back(std::move(part));
+    }
+  }
   if (input.densitySpec) {
     float top = 0.0f;
     for (float v : input.density.cells)
@@ -243,6 +247,39 @@ StreetNetwork generateStreets(const StreetsInput& input, const StreetsOptions& o
       ctx.own(GEOSPolygonize_r(ctx.handle(), parts.data(), static_cast<unsigned>(parts.size())),
               "polygonizing the blocks");
   const PolygonIndex water(input.water), parks(input.parks);
+  // The use of a block: gridify's rule for untagged land (issue 20), so a block grown here and one
+  // gridify finds between mapped streets take the same use from the same evidence. A block has no
+  // buildings yet; its evidence is the class of its bounding streets (minor roads are residential
+  // streets, as gridify reads them), and a block where the density raster is zero lies outside the
+  // urban extent.
+  std::map<std::pair<std::pair<double, double>, std::pair<double, double>>, const char*> segmentClass;
+  for (const Street& s : pieces) {
+    if (s.level == StreetLevel::Outline) continue;
+    const char* cls = s.level == StreetLevel::Minor ? "residential" : "primary";
+    for (std::size_t i = 0; i + 1 < s.line.size(); ++i) {
+      std::pair<double, double> a{s.line[i].x, s.line[i].y}, b{s.line[i + 1].x, s.line[i + 1].y};
+      if (b < a) std::swap(a, b);
+      segmentClass.emplace(std::make_pair(a, b), cls);
+    }
+  }
+  gridify::UntaggedLandOptions rule = options.untaggedLand;
+  rule.enabled = true;
+  if (const std::optional<LandUse> use = parseLandUse(options.defaultUse)) rule.defaultUse = *use;
+  auto evidenceOf = [&](const Polygon& face) {
+    gridify::BlockEvidence ev;
+    ev.cells = 1;
+    auto addRing = [&](const Ring& r) {
+      for (std::size_t i = 0; i + 1 < r.size(); ++i) {
+        std::pair<double, double> a{r[i].x, r[i].y}, b{r[i + 1].x, r[i + 1].y};
+        if (b < a) std::swap(a, b);
+        const auto it = segmentClass.find({a, b});
+        if (it != segmentClass.end()) ev.streetLength[it->second] += distance(r[i], r[i + 1]);
+      }
+    };
+    addRing(face.outer);
+    for (const Ring& h : face.holes) addRing(h);
+    return ev;
+  };
   std::vector<std::pair<std::pair<double, double>, Block>> found;
   for (Polygon& face : ctx.toPolygons(faces.get())) {
     const geos::GeomPtr g = ctx.polygon(face);
@@ -252,13 +289,18 @@ StreetNetwork generateStreets(const StreetsInput& input, const StreetsOptions& o
     GEOSGeomGetY_r(ctx.handle(), inner.get(), &y);
     const Vec2 p{x, y};
     if (!land.contains(p) || water.contains(p) || area(face) <= options.nodingTolerance) continue;
-    std::string use = options.defaultUse;
+    std::string use;
     if (!parks.empty() && parks.contains(p)) {
       use = "park";
-    } else if (domain.densitySpec) {
-      const Vec2 px = domain.densitySpec->transform.worldToPixel(p);
-      const int i = static_cast<int>(std::floor(px.x)), j = static_cast<int>(std::floor(px.y));
-      if (!domain.density.inside(i, j) || domain.density.at(i, j) <= 0.0f) use = options.emptyUse;
+    } else {
+      gridify::BlockEvidence ev = evidenceOf(face);
+      if (domain.densitySpec) {
+        const Vec2 px = domain.densitySpec->transform.worldToPixel(p);
+        const int i = static_cast<int>(std::floor(px.x)), j = static_cast<int>(std::floor(px.y));
+        ev.external = !domain.density.inside(i, j) || domain.density.at(i, j) <= 0.0f;
+      }
+      const std::optional<LandUse> inferred = gridify::inferUntaggedUse(ev, rule).first;
+      use = inferred ? std::string(landUseName(*inferred)) : options.emptyUse;
     }
     found.push_back({{y, x}, Block{std::move(face), use}});
   }

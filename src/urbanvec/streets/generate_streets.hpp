@@ -10,6 +10,7 @@
 #include "urbanvec/core/geometry.hpp"
 #include "urbanvec/core/grid.hpp"
 #include "urbanvec/core/progress.hpp"
+#include "urbanvec/gridify/untagged_land.hpp"
 #include "urbanvec/streets/graph_noise.hpp"
 #include "urbanvec/streets/hyperstreamlines.hpp"
 #include "urbanvec/streets/tensor_field.hpp"
@@ -19,8 +20,10 @@ namespace urbanvec::streets {
 struct StreetsInput {
   std::vector<DesignElement> design;   ///< grid and radial elements
   std::vector<LineString> fieldLines;  ///< roads, coastlines, rivers: each segment a regular element (§4.3)
-  std::optional<HeightMap> dem;        ///< height-field term (§4.4)
-  MultiPolygon boundary;               ///< where streets grow (required)
+  /// Roads kept in the network (spec §14): clipped to the boundary, traced roads grow around them.
+  std::vector<LineString> existingRoads;
+  std::optional<HeightMap> dem;  ///< height-field term (§4.4)
+  MultiPolygon boundary;         ///< where streets grow (required)
   MultiPolygon water;
   MultiPolygon parks;
   std::optional<GridSpec> densitySpec;  ///< population density raster (any unit, normalised by its maximum)
@@ -46,9 +49,11 @@ struct StreetsOptions {
   double polylineDecayRatio = 1.0;
   /// Snapping grid of the noding (m): pieces shorter than this vanish (no zero-length edges).
   double nodingTolerance = 0.01;
-  /// Land use of blocks (a gridify class name) where the density raster is positive or absent.
+  /// Land use of blocks (a gridify class name) where the untagged-land rule finds no telling street
+  /// (its defaultUse); the rule's other settings (street classes and their uses) are untaggedLand's.
   std::string defaultUse = "residential";
-  /// Land use of blocks where the density raster is zero.
+  gridify::UntaggedLandOptions untaggedLand;
+  /// Land use of blocks where the density raster is zero (outside the urban extent).
   std::string emptyUse = "unused";
   /// Most design elements accepted (a larger design is refused as bad input).
   std::size_t maxDesignElements = 100000;

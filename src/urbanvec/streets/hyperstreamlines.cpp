@@ -7,59 +7,22 @@
 #include <cmath>
 #include <deque>
 #include <limits>
+#include <map>
+#include <set>
 #include <utility>
 
 #include "urbanvec/core/error.hpp"
+#include "urbanvec/core/uniform_grid.hpp"
 #include "urbanvec/streets/polygon_index.hpp"
 
 namespace urbanvec::streets {
 namespace {
 
-/// Square buckets over the domain (§9.4 spatial acceleration), holding items of type T.
-template <class T>
-class BucketGrid {
- public:
-  void init(const Vec2& lo, const Vec2& hi, double cell) {
-    origin_ = lo, cell_ = cell;
-    nx_ = static_cast<int>((hi.x - lo.x) / cell) + 1;
-    ny_ = static_cast<int>((hi.y - lo.y) / cell) + 1;
-    cells_.assign(static_cast<std::size_t>(nx_) * ny_, {});
-  }
-  bool empty() const { return cells_.empty(); }
-  /// Calls fn(bucket) for each bucket overlapping the box spanned by a and b (clamped to the grid).
-  template <class Fn>
-  void forBox(const Vec2& a, const Vec2& b, Fn fn) const {
-    if (cells_.empty()) return;
-    const int i0 = col(std::min(a.x, b.x)), i1 = col(std::max(a.x, b.x));
-    const int j0 = row(std::min(a.y, b.y)), j1 = row(std::max(a.y, b.y));
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) fn(cells_[static_cast<std::size_t>(j) * nx_ + i]);
-  }
-  template <class Fn>
-  void forBoxMutable(const Vec2& a, const Vec2& b, Fn fn) {
-    std::as_const(*this).forBox(a, b, [&](const std::vector<T>& c) { fn(const_cast<std::vector<T>&>(c)); });
-  }
-
- private:
-  int col(double x) const {
-    return std::clamp(static_cast<int>(std::floor((x - origin_.x) / cell_)), 0, nx_ - 1);
-  }
-  int row(double y) const {
-    return std::clamp(static_cast<int>(std::floor((y - origin_.y) / cell_)), 0, ny_ - 1);
-  }
-  Vec2 origin_;
-  double cell_ = 1.0;
-  int nx_ = 0, ny_ = 0;
-  std::vector<std::vector<T>> cells_;
-};
-
 /// Points of finished lines, for the d_sep / d_test distance queries.
 class PointGrid {
  public:
   void init(const Vec2& lo, const Vec2& hi, double cell) { grid_.init(lo, hi, cell); }
-  void add(const Vec2& p) {
-    grid_.forBoxMutable(p, p, [&](std::vector<Vec2>& c) { c.push_back(p); });
-  }
+  void add(const Vec2& p) { grid_.insert(p, p); }
   /// True when some point lies closer than r to p.
   bool anyWithin(const Vec2& p, double r) const {
     const double r2 = r * r;
@@ -74,7 +37,7 @@ class PointGrid {
   }
 
  private:
-  BucketGrid<Vec2> grid_;
+  UniformGrid<Vec2> grid_;  // §9.4 spatial acceleration
 };
 
 /// Segments of finished lines, for crossings (look-ahead joins, minor roads ending on major).
@@ -84,7 +47,7 @@ class SegmentGrid {
   void add(const Vec2& a, const Vec2& b) {
     const int id = static_cast<int>(segs_.size());
     segs_.push_back({a, b});
-    grid_.forBoxMutable(a, b, [&](std::vector<int>& c) { c.push_back(id); });
+    grid_.insert(a, b, id);
   }
   /// The first crossing of p→q with a stored segment at a fraction t > minT, or t > 1 when none.
   double firstCrossing(const Vec2& p, const Vec2& q, double minT = 0.0) const {
@@ -104,7 +67,7 @@ class SegmentGrid {
   }
 
  private:
-  BucketGrid<int> grid_;
+  UniformGrid<int> grid_;
   std::vector<std::pair<Vec2, Vec2>> segs_;
 };
 
@@ -137,6 +100,8 @@ class Tracer {
   }
 
   void run(const std::vector<Vec2>& seeds, const Progress& progress) {
+    for (const LineString& l : domain_.existing)
+      if (l.size() >= 2) insertExisting(l);
     traceLevel(StreetLevel::Major, seeds, subProgress(progress, 0.0, o_.minorRoads ? 0.4 : 1.0));
     if (o_.minorRoads) {
       // Minor roads are traced region by region, the major roads bounding the regions (§12): their
@@ -151,6 +116,7 @@ class Tracer {
       std::vector<Vec2> minorSeeds;
       traceLevel(StreetLevel::Minor, minorSeeds, subProgress(progress, 0.4, 1.0), onMajor);
     }
+    connectExistingEnds();
     reportProgress(progress, 1.0, "tracing");
   }
 
@@ -314,6 +280,62 @@ class Tracer {
     return line;
   }
 
+  /// The family a road running along `dir` at p follows: the eigenvector closer to its direction.
+  int familyAlong(const Vec2& p, const Vec2& dir) const {
+    const Tensor t = field_.sample(p);
+    if (t.magnitude() == 0.0) return 0;
+    return std::abs(dot(t.major(), dir)) >= std::abs(dot(t.minor(), dir)) ? 0 : 1;
+  }
+
+  /// An existing road (§14) acts as a major road of the family it follows, segment by segment: its
+  /// points, one per integration step like a traced road's, keep that family's roads d_sep away, and
+  /// minor roads end on it.
+  void insertExisting(const LineString& line) {
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+      const Vec2 a = line[i], b = line[i + 1];
+      const int family = familyAlong((a + b) * 0.5, b - a);
+      const int steps = std::max(1, static_cast<int>(std::ceil(distance(a, b) / h_)));
+      for (int k = 0; k < steps; ++k) points_[0][family].add(a + (b - a) * (static_cast<double>(k) / steps));
+      all_.add(a, b);
+      major_.add(a, b);
+    }
+    points_[0][familyAlong(line.back(), line.back() - line[line.size() - 2])].add(line.back());
+    streets_.push_back({line, StreetLevel::Existing, 0});
+  }
+
+  /// §14 "Connect": an existing road that stops inside the land without meeting another (the end of
+  /// the roads the user chose to keep, not a mapped cul-de-sac, which the caller cannot tell apart)
+  /// is continued along the field by the look-ahead rule of a major road (it acts as one) until it
+  /// meets a street; it stays a dead end when none lies within the look-ahead distance.
+  void connectExistingEnds() {
+    std::map<std::pair<double, double>, int> lineCount;
+    const std::size_t existing = domain_.existing.size();
+    for (const LineString& l : domain_.existing) {
+      std::set<std::pair<double, double>> own;
+      for (const Vec2& v : l) own.insert({v.x, v.y});
+      for (const auto& v : own) ++lineCount[v];
+    }
+    std::vector<LineString> extensions;
+    for (std::size_t i = 0; i < existing; ++i) {
+      const LineString& l = domain_.existing[i];
+      if (l.size() < 2 || l.front() == l.back()) continue;
+      for (int end = 0; end < 2; ++end) {
+        const Vec2 p = end ? l.back() : l.front(), prev = end ? l[l.size() - 2] : l[1];
+        if (lineCount[{p.x, p.y}] > 1 || !onLand(p)) continue;
+        const Vec2 dir = p - prev;
+        const int family = familyAlong(p, dir);
+        Vec2 aligned;
+        if (!eig(p, family, dir, aligned)) continue;
+        LineString pts{p};
+        if (lookAhead(StreetLevel::Major, family, pts, aligned) && pts.size() >= 2) extensions.push_back(pts);
+      }
+    }
+    for (const LineString& e : extensions) {
+      ++stats_.lookaheadJoins;
+      insert(e, StreetLevel::Major, familyAlong(e.front(), e[1] - e.front()));
+    }
+  }
+
   void insert(const LineString& line, StreetLevel l, int family) {
     for (const Vec2& p : line) points_[static_cast<int>(l)][family].add(p);
     for (std::size_t i = 0; i + 1 < line.size(); ++i) {
@@ -329,7 +351,7 @@ class Tracer {
   /// left (negative: right) of the street.
   void placeSeeds(const Street& s, StreetLevel l, std::vector<std::pair<Vec2, int>>& out, double phase = 0.0,
                   double offset = 0.0) const {
-    const int other = 1 - s.family;
+    const bool existing = s.level == StreetLevel::Existing;
     double next = phase * dsep(l, s.line.front()), at = 0.0;
     for (std::size_t i = 0; i + 1 < s.line.size(); ++i) {
       const Vec2 a = s.line[i], b = s.line[i + 1];
@@ -338,7 +360,7 @@ class Tracer {
       const Vec2 normal{-(b.y - a.y) / len, (b.x - a.x) / len};
       while (next <= at + len) {
         const Vec2 p = a + (b - a) * ((next - at) / len) + normal * offset;
-        out.push_back({p, other});
+        out.push_back({p, 1 - (existing ? familyAlong(p, b - a) : s.family)});
         next += dsep(l, p);
       }
       at += len;

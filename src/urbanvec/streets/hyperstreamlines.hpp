@@ -60,15 +60,19 @@ struct TraceDomain {
   /// Population density normalised to [0, 1] on its frame (empty = P ≡ 1, d_sep everywhere).
   std::optional<GridSpec> densitySpec;
   Grid<float> density;
+  /// Existing roads kept in the network (spec §14 local editing, the old network outside the traced
+  /// region): traced roads keep their d_sep from them, minor roads end on them in T-junctions, and
+  /// minor-road seeds are placed along them like along a traced major road.
+  std::vector<LineString> existing;
 };
 
 /// Outline marks the boundary and water outlines noded with the streets (for the blocks).
-enum class StreetLevel : std::uint8_t { Major = 0, Minor = 1, Outline = 2 };
+enum class StreetLevel : std::uint8_t { Major = 0, Minor = 1, Outline = 2, Existing = 3 };
 
 struct Street {
   LineString line;
   StreetLevel level = StreetLevel::Major;
-  int family = 0;  ///< 0 = major eigenvector, 1 = minor eigenvector
+  int family = 0;  ///< 0 = major eigenvector, 1 = minor eigenvector (an existing road: either)
 };
 
 struct TraceStats {

@@ -10,6 +10,7 @@
 
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/core/random.hpp"
+#include "urbanvec/core/uniform_grid.hpp"
 
 namespace urbanvec::streets {
 
@@ -142,64 +143,46 @@ namespace {
 /// Elements sharing one decay in buckets, for the nearest element and the elements within a radius.
 class ElementBuckets {
  public:
-  ElementBuckets(const std::vector<const DesignElement*>& elements, double cell) : cell_(cell) {
+  ElementBuckets(const std::vector<const DesignElement*>& elements, double cell) {
     if (elements.empty()) return;
     double minX = std::numeric_limits<double>::infinity(), minY = minX, maxX = -minX, maxY = -minX;
     for (const DesignElement* e : elements) {
       minX = std::min(minX, e->position.x), maxX = std::max(maxX, e->position.x);
       minY = std::min(minY, e->position.y), maxY = std::max(maxY, e->position.y);
     }
-    origin_ = {minX, minY};
-    nx_ = static_cast<int>((maxX - minX) / cell_) + 1;
-    ny_ = static_cast<int>((maxY - minY) / cell_) + 1;
-    buckets_.assign(static_cast<std::size_t>(nx_) * ny_, {});
-    for (const DesignElement* e : elements) buckets_[index(cellOf(e->position))].push_back(e);
+    grid_.init({minX, minY}, {maxX, maxY}, cell);
+    for (const DesignElement* e : elements) grid_.insert(e->position, e);
   }
-  bool empty() const { return buckets_.empty(); }
-  /// Squared distance to the nearest element.
+  bool empty() const { return grid_.empty(); }
+  /// Squared distance to the nearest element. A point outside the buckets starts from the nearest
+  /// bucket: its distance to any element is at least that of its projection onto the grid's box.
   double nearest2(const Vec2& p) const {
-    const auto [ci, cj] = cellOf(p);
+    const int ci = grid_.column(p.x), cj = grid_.row(p.y);
     double best = std::numeric_limits<double>::infinity();
     for (int ring = 0;; ++ring) {
-      // Cells at Chebyshev distance `ring` are at least (ring - 1) cells away.
-      const double reach = std::max(0, ring - 1) * cell_;
+      // Buckets at Chebyshev distance `ring` are at least (ring - 1) buckets away.
+      const double reach = std::max(0, ring - 1) * grid_.cell();
       if (reach * reach > best) break;
-      if (ring > nx_ + ny_ + 2 + std::abs(ci) + std::abs(cj)) break;
-      for (int j = cj - ring; j <= cj + ring; ++j)
-        for (int i = ci - ring; i <= ci + ring; ++i) {
-          if (std::max(std::abs(i - ci), std::abs(j - cj)) != ring || i < 0 || j < 0 || i >= nx_ || j >= ny_)
-            continue;
-          for (const DesignElement* e : buckets_[static_cast<std::size_t>(j) * nx_ + i]) {
-            const Vec2 d = e->position - p;
-            best = std::min(best, dot(d, d));
-          }
+      const bool any = grid_.forRing(ci, cj, ring, [&](const std::vector<const DesignElement*>& bucket) {
+        for (const DesignElement* e : bucket) {
+          const Vec2 d = e->position - p;
+          best = std::min(best, dot(d, d));
         }
+      });
+      if (!any) break;
     }
     return best;
   }
   template <class Fn>
   void within(const Vec2& p, double radius, Fn fn) const {
-    const int i0 = std::max(0, static_cast<int>(std::floor((p.x - radius - origin_.x) / cell_)));
-    const int i1 = std::min(nx_ - 1, static_cast<int>(std::floor((p.x + radius - origin_.x) / cell_)));
-    const int j0 = std::max(0, static_cast<int>(std::floor((p.y - radius - origin_.y) / cell_)));
-    const int j1 = std::min(ny_ - 1, static_cast<int>(std::floor((p.y + radius - origin_.y) / cell_)));
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i)
-        for (const DesignElement* e : buckets_[static_cast<std::size_t>(j) * nx_ + i]) fn(*e);
+    grid_.forBox(p - Vec2{radius, radius}, p + Vec2{radius, radius},
+                 [&](const std::vector<const DesignElement*>& bucket) {
+                   for (const DesignElement* e : bucket) fn(*e);
+                 });
   }
 
  private:
-  std::pair<int, int> cellOf(const Vec2& p) const {
-    return {static_cast<int>(std::floor((p.x - origin_.x) / cell_)),
-            static_cast<int>(std::floor((p.y - origin_.y) / cell_))};
-  }
-  std::size_t index(std::pair<int, int> c) const {
-    return static_cast<std::size_t>(std::clamp(c.second, 0, ny_ - 1)) * nx_ + std::clamp(c.first, 0, nx_ - 1);
-  }
-  double cell_;
-  Vec2 origin_;
-  int nx_ = 0, ny_ = 0;
-  std::vector<std::vector<const DesignElement*>> buckets_;
+  UniformGrid<const DesignElement*> grid_;
 };
 
 /// Height H at a world point by bilinear interpolation of the map (NaN outside or on invalid cells).

@@ -365,3 +365,71 @@ TEST(Streets, DensityAndParksWidenTheSpacing) {
   for (const Block& b : parked.blocks) parkBlocks += b.landUse == "park";
   EXPECT_GT(parkBlocks, 0);
 }
+
+TEST(Streets, KeptRoadsStayAndTracedRoadsEndOnThem) {
+  // Spec §14: an east-west road across the land and a north-south one stopping 300 m short of it are
+  // kept; the traced roads grow around them, minor roads end on them, and the short one is continued
+  // until it meets a street.
+  StreetsInput in;
+  in.boundary = square(0, 0, 2000);
+  const LineString across{{0, 1000}, {700, 1040}, {1300, 1040}, {2000, 1100}};
+  const LineString stopping{{1000, 0}, {1000, 700}};
+  in.fieldLines = {across, stopping};
+  in.existingRoads = in.fieldLines;
+  StreetsOptions o = quiet();
+  o.trace.majorDsep = 300;
+  o.trace.minorDsep = 100;
+  const StreetNetwork net = generateStreets(in, o);
+  double kept = 0.0;
+  for (const StreetEdge& s : net.streets)
+    if (s.level == StreetLevel::Existing) kept += length(s.line);
+  EXPECT_NEAR(kept, length(across) + length(stopping), 0.01);  // noded on a 1 cm grid
+  // The short road no longer ends at (1000, 700).
+  for (const StreetNode& n : net.nodes)
+    if (distance(n.p, {1000, 700}) < 1.0) EXPECT_GE(n.degree, 2);
+  // Junctions on the kept roads: the traced roads meeting them.
+  int onKept = 0, tees = 0;
+  for (const StreetNode& n : net.nodes) {
+    const double d = std::min(distanceToSegment(n.p, {1000, 0}, {1000, 700}),
+                              std::min(std::min(distanceToSegment(n.p, across[0], across[1]),
+                                                distanceToSegment(n.p, across[1], across[2])),
+                                       distanceToSegment(n.p, across[2], across[3])));
+    if (d > 1e-6 || n.p.x < 1 || n.p.x > 1999 || n.p.y < 1 || n.p.y > 1999) continue;
+    ++onKept;
+    tees += n.degree == 3;
+  }
+  EXPECT_GE(onKept, 16) << tees;
+  EXPECT_GE(tees, 0.7 * onKept);
+  // Without keeping them, the roads only shape the field.
+  in.existingRoads.clear();
+  for (const StreetEdge& s : generateStreets(in, o).streets) EXPECT_NE(s.level, StreetLevel::Existing);
+}
+
+TEST(Streets, BlocksTakeGridifysUntaggedLandRule) {
+  // One rule with gridify (issue 20): a block mostly edged by minor (residential) streets is
+  // residential; one edged by major roads only takes the default use.
+  StreetsInput in;
+  in.boundary = square(0, 0, 2000);
+  DesignElement e;
+  e.position = {1000, 1000};
+  in.design = {e};
+  StreetsOptions o = quiet();
+  o.trace.majorDsep = 400;
+  o.trace.minorDsep = 100;
+  o.defaultUse = "commercial";
+  auto shares = [&] {
+    const StreetNetwork net = generateStreets(in, o);
+    double residential = 0, commercial = 0;
+    for (const Block& b : net.blocks)
+      (b.landUse == "residential"  ? residential
+       : b.landUse == "commercial" ? commercial
+                                   : residential) += area(b.shape);
+    return std::make_pair(residential, commercial);
+  };
+  const auto [res, com] = shares();
+  EXPECT_GT(res, 0.9 * (res + com));
+  o.trace.minorRoads = false;
+  const auto [res2, com2] = shares();
+  EXPECT_EQ(res2, 0.0);
+  EXPECT_NEAR(com2, 4e6, 1.0);
+}
