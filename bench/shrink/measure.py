@@ -9,7 +9,8 @@ by the library, src/urbanvec/shrink/measures.cpp):
   area kept vs ideal, worst landmark deviation from a pure translation (m), landmark pairs whose
   left-right / above-below order flipped, median change of pairwise bearings (deg), ratio of shrunk to
   original pairwise landmark distances (min / median / max), new crossings, intersections kept,
-  components, new dead ends, orientation entropy and right-angle share before/after, mean block area,
+  components, new dead ends, orientation entropy and right-angle share before/after, mean block area
+  of the skeleton before/after and of the whole original street map (the thesis's claim),
   and the pixels frozen so that no seam makes two streets cross or flips two landmarks (the guard).
 
 Usage: bench/shrink/measure.py [--urbanvec build/bin/urbanvec] [--osm FILE] [--osmi FILE] [--out DIR]
@@ -44,19 +45,20 @@ def main():
 
     print('| shF | seams (removed) | area kept (ideal) | landmark dev. m | order flips x/y | bearing change ° '
           '| distance ratio min/med/max | new crossings | intersections kept | components | new dead ends '
-          '| mean block m² before → after | pixels frozen: crossings / landmark order |')
-    print('|---|---|---|---|---|---|---|---|---|---|---|---|---|')
+          '| mean block m² before → after (blocks) | city mean block m² (blocks) | pixels frozen: crossings / landmark order |')
+    print('|---|---|---|---|---|---|---|---|---|---|---|---|---|---|')
     for shf in (0.05, 0.15, 0.5):
         for s in (50, 100, 150):
             r = run(a.urbanvec, a.osm, a.osmi, os.path.join(out, 'shf%g_%d.gpkg' % (shf, s)),
                     ['-shf', str(shf), '-seams', str(s), str(s)])
-            print('| %g | %d×%d (%d×%d) | %.3f (%.3f) | %.1e | %d/%d | %.1f | %.2f/%.2f/%.2f | %d | %d/%d | %d→%d | %d | %.0f → %.0f | %d / %d |' % (
+            print('| %g | %d×%d (%d×%d) | %.3f (%.3f) | %.1e | %d/%d | %.1f | %.2f/%.2f/%.2f | %d | %d/%d | %d→%d | %d | %.0f → %.0f (%d) | %.0f (%d) | %d / %d |' % (
                 shf, s, s, r['seams_vertical'], r['seams_horizontal'], r['area_kept'], r['area_ideal'], r['landmark_max_deviation'],
                 r['order_violations_x'], r['order_violations_y'], r['bearing_change_median'],
                 r['distance_ratio_min'], r['distance_ratio_median'], r['distance_ratio_max'],
                 r['new_crossings'], r['intersections_kept'], r['intersections_before'],
                 r['components_before'], r['components_after'], r['new_dead_ends'],
-                r['mean_block_area_before'], r['mean_block_area_after'],
+                r['mean_block_area_before'], r['mean_block_area_after'], r['blocks_after'],
+                r.get('mean_block_area_city', 0), r.get('blocks_city', 0),
                 r.get('crossing_guard_pixels', r.get('way_separation_pixels', 0)),
                 r.get('landmark_order_guard_pixels', 0)))
     print()

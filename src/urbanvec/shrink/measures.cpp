@@ -277,6 +277,21 @@ ShrinkMeasures measureShrink(const MeasureInput& in) {
   m.angleDeviationBefore = angB.deviation, m.angleDeviationAfter = angA.deviation;
   std::tie(m.blocksBefore, m.meanBlockAreaBefore) = blockAreas(eb, in.before);
   std::tie(m.blocksAfter, m.meanBlockAreaAfter) = blockAreas(ea, in.after);
+  if (!in.cityWays.empty()) {
+    // The whole map is noded first (GEOS): its bridges and tunnels cross without a shared node, and
+    // seen from above they bound blocks like any street.
+    std::vector<LineString> lines;
+    for (const auto& way : in.cityWays) {
+      LineString l;
+      for (int n : way) l.push_back(in.before[static_cast<size_t>(n)]);
+      if (l.size() >= 2) lines.push_back(std::move(l));
+    }
+    const PlanarGraph city = PlanarGraph::fromLines(lines, 1e-6);
+    double total = 0.0;
+    for (const PlanarGraph::Face& f : city.boundedFaces(1e-6))
+      total += f.twiceSignedArea / 2.0, ++m.blocksCity;
+    m.meanBlockAreaCity = m.blocksCity ? total / m.blocksCity : 0.0;
+  }
   return m;
 }
 

@@ -18,6 +18,9 @@ struct MeasureInput {
   std::vector<Vec2> after;                   ///< per node; non-finite when dropped
   /// Per landmark (place): its element node lists.
   std::vector<std::vector<std::vector<int>>> landmarks;
+  /// Every street of the cleaned city (the full map before selection), node indices into `before`:
+  /// the thesis's block-area claim compares the shrunk skeleton's blocks with the city's.
+  std::vector<std::vector<int>> cityWays;
 };
 
 struct ShrinkMeasures {
@@ -39,6 +42,8 @@ struct ShrinkMeasures {
          angleDeviationAfter = 0.0;  ///< median |angle - 90| at intersections, degrees
   int blocksBefore = 0, blocksAfter = 0;
   double meanBlockAreaBefore = 0.0, meanBlockAreaAfter = 0.0;  ///< m²
+  int blocksCity = 0;              ///< bounded faces of the whole original street map
+  double meanBlockAreaCity = 0.0;  ///< m²
 };
 
 ShrinkMeasures measureShrink(const MeasureInput& input);

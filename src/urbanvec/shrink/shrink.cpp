@@ -531,6 +531,7 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
   mi.before = pointBefore;
   mi.after = after;
   for (int p : skeleton.places) mi.landmarks.push_back(places[static_cast<size_t>(p)].shapes);
+  for (const CityWay& way : city.streets) mi.cityWays.push_back(way.nodes);
   const ShrinkMeasures& m = result.measures = measureShrink(mi);
   const double ideal =
       static_cast<double>(carve.width) * carve.height / (static_cast<double>(frame.width) * frame.height);
@@ -563,6 +564,8 @@ ShrinkResult shrinkCity(const ShrinkInput& input, const ShrinkOptions& options, 
   put("blocks_after", m.blocksAfter);
   put("mean_block_area_before", m.meanBlockAreaBefore);
   put("mean_block_area_after", m.meanBlockAreaAfter);
+  put("blocks_city", m.blocksCity);
+  put("mean_block_area_city", m.meanBlockAreaCity);
   timer.lap("measures");
   reportProgress(progress, 1.0, "measures");
   return result;
