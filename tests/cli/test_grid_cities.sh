@@ -15,8 +15,8 @@ jqv() { jq -r "$1" "$2"; }
 le() { awk -v v="$2" -v m="$3" 'BEGIN { exit !(v != "" && v != "null" && v + 0 <= m + 0) }' || fail "$1 = '$2', above $3"; echo "$1 = $2 (<= $3)"; }
 ge() { awk -v v="$2" -v m="$3" 'BEGIN { exit !(v != "" && v != "null" && v + 0 >= m + 0) }' || fail "$1 = '$2', below $3"; echo "$1 = $2 (>= $3)"; }
 
-declare -A turning_max=([0]=62 [15]=205 [30]=245 [45]=260 [60]=340)
-declare -A sharp_max=([0]=54 [15]=178 [30]=200 [45]=215 [60]=275)
+declare -A turning_max=([0]=62 [15]=195 [30]=170 [45]=255 [60]=325)
+declare -A sharp_max=([0]=54 [15]=160 [30]=120 [45]=217 [60]=250)
 on_sum=0
 off_sum=0
 for angle in 0 15 30 45 60; do
