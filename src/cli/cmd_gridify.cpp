@@ -7,6 +7,8 @@
 
 #include "urbanvec/app/city_source.hpp"
 #include "urbanvec/app/command.hpp"
+#include "urbanvec/app/grid_input.hpp"
+#include "urbanvec/app/land_cover.hpp"
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/gridify/gridify.hpp"
 #include "urbanvec/io/atomic_output.hpp"
@@ -150,6 +152,14 @@ app::CommandSpec spec() {
                      "block's street length decides).")
                   .byDefault("residential=residential,living_street=residential")
                   .isAdvanced());
+  o.push_back(option("-landcover", ValueType::String, "<raster>",
+                     "A land-cover raster (any CRS, band 1), warped onto the grid with mode resampling: its "
+                     "developed classes claim land no land-use polygon covers (needs -landcover-table).")
+                  .withRole(Role::InputRaster));
+  o.push_back(option("-landcover-table", ValueType::String, "<csv>",
+                     "value,class_name lines mapping every value of the -landcover raster to a class "
+                     "(unused, water and road classes claim nothing).")
+                  .withRole(Role::InputFile));
   for (const app::OptionSpec& r : app::rasterOutputOptions()) o.push_back(r);
   s.examples = {"urbanvec gridify -tr 8 monaco.osm.pbf monaco_grid",
                 "urbanvec gridify -tr 6 -t_srs EPSG:32633 -roads-layer streets -buildings-layer buildings "
@@ -221,6 +231,17 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
     }
   }
 
+  app::LandCoverSource landCover;
+  if (args.given("-landcover") != args.given("-landcover-table"))
+    throw invalidOption(args.given("-landcover")
+                            ? "-landcover needs -landcover-table, the value,class_name table of its values"
+                            : "-landcover-table needs -landcover, the land-cover raster it describes");
+  if (args.given("-landcover")) {
+    landCover.raster = args.str("-landcover");
+    landCover.table = args.str("-landcover-table");
+    app::readClassTable(landCover.table, "-landcover-table");  // a bad table fails before any reading
+  }
+
   app::CitySourceOptions source;
   if (args.given("-a_srs")) source.assignedCrs = args.str("-a_srs");
   if (args.given("-t_srs")) source.targetCrs = args.str("-t_srs");
@@ -257,6 +278,10 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   const Progress readProgress = subProgress(ctx.progress, 0.0, 0.3);
   reportProgress(readProgress, 0.0, "reading");
   gridify::CityData city = app::readCitySource(input, source, ctx.warn);
+  if (!landCover.raster.empty()) {
+    reportProgress(readProgress, 0.9, "land cover");
+    city.landCover = app::readLandCover(landCover, gridify::gridFrame(city, options));
+  }
   reportProgress(readProgress, 1.0, "reading");
   gridify::GridifyResult result = gridify::gridify(city, options, subProgress(ctx.progress, 0.3, 0.9));
 
@@ -285,6 +310,9 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
              << options.cellSize << " m in " << crsName << "; " << result.roadsRasterized << " roads, "
              << result.parcels.size() << " parcels, population " << static_cast<long long>(population + 0.5)
              << "; " << seconds << " s\n";
+    if (!landCover.raster.empty())
+      *ctx.out << "land cover: " << result.landCoverCells
+               << " cells no land-use polygon covers took their class from '" << landCover.raster << "'\n";
     if (options.untagged.enabled)
       *ctx.out << "untagged land: " << result.inferredCells << " cells in "
                << result.untaggedByBuildings + result.untaggedByStreets + result.untaggedByDefault

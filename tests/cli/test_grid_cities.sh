@@ -5,7 +5,9 @@
 # exact: every street is a straight line), then vectorized with default options and measured by
 # `urbanvec evaluate`. Also the Bubenec sample (a real plan of near-straight streets).
 #
-# Bounds: the figures measured when the test was written (B7 on, default options) with ~15 % room;
+# Bounds: the figures measured when the test was written (B7 on, default options; since B3 pairs the
+# street ends across a primary and gridify redraws crossing staircases: 52, 167, 141, 218, 180 deg/km
+# and 45, 139, 101, 188, 137 in bends >= 20 deg at 0-60 degrees) with ~15 % room;
 # the truth never turns, so turning is bounded in degrees per km, and B7 is checked against the same
 # run with -no-through-roads (today 53 vs 123 deg/km at 0 degrees, 962 vs 1225 summed over the five).
 set -e
@@ -15,8 +17,8 @@ jqv() { jq -r "$1" "$2"; }
 le() { awk -v v="$2" -v m="$3" 'BEGIN { exit !(v != "" && v != "null" && v + 0 <= m + 0) }' || fail "$1 = '$2', above $3"; echo "$1 = $2 (<= $3)"; }
 ge() { awk -v v="$2" -v m="$3" 'BEGIN { exit !(v != "" && v != "null" && v + 0 >= m + 0) }' || fail "$1 = '$2', below $3"; echo "$1 = $2 (>= $3)"; }
 
-declare -A turning_max=([0]=62 [15]=205 [30]=245 [45]=260 [60]=340)
-declare -A sharp_max=([0]=54 [15]=178 [30]=200 [45]=215 [60]=275)
+declare -A turning_max=([0]=62 [15]=195 [30]=170 [45]=255 [60]=207)
+declare -A sharp_max=([0]=54 [15]=160 [30]=120 [45]=217 [60]=158)
 on_sum=0
 off_sum=0
 for angle in 0 15 30 45 60; do
@@ -43,12 +45,10 @@ for angle in 0 15 30 45 60; do
   sum=$(jq '[.roads.result_turning_by_bend_deg_per_km[]] | add' "$j")
   awk -v a="$sum" -v b="$(jqv .roads.result_turning_deg_per_km "$j")" 'BEGIN { exit !((a - b) ^ 2 < 1e-6) }' ||
     fail "grid $angle: bend classes sum to $sum"
-  # Blocks: the grid's blocks are found where the raster keeps them apart (at 60 degrees gridify leaves
-  # gaps where streets meet the avenue, merging raw blocks, see docs/vectorize.md).
-  if [ "$angle" != 60 ]; then
-    ge "grid $angle: matched share of matchable truth blocks" "$(jqv .blocks.matchable_matched_share "$j")" 0.95
-    ge "grid $angle: matchable truth blocks" "$(jqv .blocks.matchable_truth_count "$j")" 28
-  fi
+  # Blocks: the grid's blocks are found where the raster keeps them apart (at 60 degrees only since
+  # gridify redraws crossing staircases as a plus: 11 of 30 before, see docs/gridify.md).
+  ge "grid $angle: matched share of matchable truth blocks" "$(jqv .blocks.matchable_matched_share "$j")" 0.95
+  ge "grid $angle: matchable truth blocks" "$(jqv .blocks.matchable_truth_count "$j")" 28
   run_cmd vectorize -q -roads-only -no-through-roads "$g/landuse.tif" "$WORK/off$angle.gpkg"
   expect_status 0
   run_cmd evaluate -q -json "$WORK/off$angle.json" "$WORK/off$angle.gpkg" "$g/truth.gpkg"

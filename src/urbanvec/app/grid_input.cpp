@@ -169,10 +169,10 @@ void requireMetricGrid(const GridSpec& spec, const std::string& role, const std:
 
 }  // namespace
 
-std::vector<std::pair<double, LandUse>> readClassTable(const std::string& path) {
-  requireFile(path, "-classes table");
+std::vector<std::pair<double, LandUse>> readClassTable(const std::string& path, const std::string& role) {
+  requireFile(path, role);
   std::ifstream f(path);
-  if (!f) throw invalidInput("-classes table '" + path + "' cannot be opened");
+  if (!f) throw invalidInput(role + " '" + path + "' cannot be opened");
   std::vector<std::pair<double, LandUse>> table;
   std::string line;
   int lineNo = 0;
@@ -187,18 +187,18 @@ std::vector<std::pair<double, LandUse>> readClassTable(const std::string& path) 
     double value = 0;
     if (cols.size() < 2 || !parseTableNumber(cols[0], *separator, value)) {
       if (table.empty() && firstLine && cols.size() >= 2) continue;  // header
-      throw invalidInput("-classes table '" + path + "' line " + std::to_string(lineNo) +
+      throw invalidInput(role + " '" + path + "' line " + std::to_string(lineNo) +
                          " is not 'value,class_name': '" + t + "'");
     }
     const std::optional<LandUse> use = parseLandUse(cols[1]);
     if (!use)
-      throw invalidInput("-classes table '" + path + "' line " + std::to_string(lineNo) +
-                         " names unknown class '" + cols[1] +
+      throw invalidInput(role + " '" + path + "' line " + std::to_string(lineNo) + " names unknown class '" +
+                         cols[1] +
                          "' (expected one of unused, water, secondary_road, primary_road, residential, "
                          "commercial, industrial, park, reserved)");
     table.emplace_back(value, *use);
   }
-  if (table.empty()) throw invalidInput("-classes table '" + path + "' maps no value");
+  if (table.empty()) throw invalidInput(role + " '" + path + "' maps no value");
   return table;
 }
 

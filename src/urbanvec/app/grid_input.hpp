@@ -30,7 +30,9 @@ struct GridInputPaths {
 vectorize::VectorizeInput loadGridInput(const GridInputPaths& paths,
                                         std::vector<std::string>* warnings = nullptr);
 
-/// Parses a `value,class_name` table (header optional, '#' comments allowed) into value -> class.
-std::vector<std::pair<double, LandUse>> readClassTable(const std::string& path);
+/// Parses a `value,class_name` table (header optional, '#' comments allowed) into value -> class;
+/// `role` names the table in messages.
+std::vector<std::pair<double, LandUse>> readClassTable(const std::string& path,
+                                                       const std::string& role = "-classes table");
 
 }  // namespace urbanvec::app

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "urbanvec/core/geometry.hpp"
+#include "urbanvec/core/grid.hpp"
 #include "urbanvec/core/landuse.hpp"
 
 namespace urbanvec::gridify {
@@ -27,14 +28,14 @@ struct CityArea {
 
 struct CityBuilding {
   MultiPolygon footprint;
-  std::optional<LandUse> use;     ///< from its own tags; empty = inherit from the area it stands in
-  std::optional<double> levels;   ///< storeys above ground; empty = unknown
+  std::optional<LandUse> use;    ///< from its own tags; empty = inherit from the area it stands in
+  std::optional<double> levels;  ///< storeys above ground; empty = unknown
 };
 
 struct CityParcel {
   MultiPolygon shape;
-  std::optional<LandUse> use;          ///< empty = derived from what stands on it
-  std::optional<double> population;    ///< empty = estimated from its buildings
+  std::optional<LandUse> use;        ///< empty = derived from what stands on it
+  std::optional<double> population;  ///< empty = estimated from its buildings
   std::string sourceId;
 };
 
@@ -48,6 +49,10 @@ struct CityData {
   std::vector<LineString> coastlines;
   /// Real parcels; when empty, gridify derives parcels from buildings and blocks.
   std::vector<CityParcel> parcels;
+  /// A land-cover source already on the grid (gridFrame(); issue 20): a land-use class per cell, where
+  /// the developed classes (residential, commercial, industrial, park, reserved) claim cells no
+  /// land-use polygon covers and any other value says nothing. Empty = no such source.
+  Grid<std::uint8_t> landCover;
 };
 
 /// Bounding box in world units.

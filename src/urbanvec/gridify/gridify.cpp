@@ -208,16 +208,11 @@ Extent cityExtent(const CityData& city) {
   return first ? Extent{} : e;
 }
 
-GridifyResult gridify(const CityData& city, const GridifyOptions& options, const Progress& progress) {
+GridSpec gridFrame(const CityData& city, const GridifyOptions& options) {
   if (!(options.cellSize > 0.0) || !std::isfinite(options.cellSize))
     throw invalidOption("-tr: the cell size must be a positive number of metres, not " +
                         formatNumber(options.cellSize));
-  if (!(options.floorAreaPerPerson > 0.0))
-    throw invalidOption("-floor-area-per-person must be positive, not " +
-                        formatNumber(options.floorAreaPerPerson));
   const double cs = options.cellSize;
-
-  // Grid frame.
   Extent box;
   if (options.extent) {
     box = *options.extent;
@@ -236,14 +231,29 @@ GridifyResult gridify(const CityData& city, const GridifyOptions& options, const
                         formatNumber(cs) + " m");
   if (w * h > 2.0e8)
     throw invalidOption("-tr: " + formatNumber(w) + " x " + formatNumber(h) + " cells is too many");
-  GridifyResult result;
-  GridSpec& spec = result.spec;
+  GridSpec spec;
   spec.width = static_cast<int>(w);
   spec.height = static_cast<int>(h);
   spec.transform.c = {box.minX, cs, 0.0, box.maxY, 0.0, -cs};
   spec.crsWkt = city.crsWkt;
-  box.maxX = box.minX + spec.width * cs;
-  box.minY = box.maxY - spec.height * cs;
+  return spec;
+}
+
+GridifyResult gridify(const CityData& city, const GridifyOptions& options, const Progress& progress) {
+  if (!(options.floorAreaPerPerson > 0.0))
+    throw invalidOption("-floor-area-per-person must be positive, not " +
+                        formatNumber(options.floorAreaPerPerson));
+  GridifyResult result;
+  result.spec = gridFrame(city, options);
+  const GridSpec& spec = result.spec;
+  const double cs = options.cellSize;
+  Extent box{spec.transform.c[0], spec.transform.c[3] - spec.height * cs,
+             spec.transform.c[0] + spec.width * cs, spec.transform.c[3]};
+  const bool withLandCover = !city.landCover.cells.empty();
+  if (withLandCover && (city.landCover.width != spec.width || city.landCover.height != spec.height))
+    throw internalError("the land cover (" + std::to_string(city.landCover.width) + " x " +
+                        std::to_string(city.landCover.height) + " cells) is not on the grid (" +
+                        std::to_string(spec.width) + " x " + std::to_string(spec.height) + " cells)");
   const Frame frame{box.minX, box.maxY, cs, spec.width, spec.height};
   geos::Context ctx;
   reportProgress(progress, 0.0, "land use");
@@ -271,6 +281,15 @@ GridifyResult gridify(const CityData& city, const GridifyOptions& options, const
       if (a.use != LandUse::Unused) base.at(c.first, c.second) = static_cast<std::uint8_t>(a.use);
     }
   }
+  // A land-cover raster (already on the grid, issue 20) gives its developed classes to the cells no
+  // land-use polygon covers; buildings standing there take its class, as they take a polygon's.
+  if (withLandCover)
+    for (std::size_t k = 0; k < base.cells.size(); ++k) {
+      const LandUse cover = static_cast<LandUse>(city.landCover.cells[k]);
+      if (tagged.cells[k] || !(isDeveloped(cover) || cover == LandUse::Reserved)) continue;
+      base.cells[k] = static_cast<std::uint8_t>(cover);
+      ++result.landCoverCells;
+    }
   reportProgress(progress, 0.1, "water");
 
   // Water: polygons and the sea side of the coastline, clipped to the grid.

@@ -67,7 +67,14 @@ struct GridifyResult {
   std::size_t untaggedByStreets = 0;
   std::size_t untaggedByDefault = 0;
   std::size_t inferredCells = 0;
+  /// Cells no land-use polygon covers that took their class from CityData::landCover.
+  std::size_t landCoverCells = 0;
 };
+
+/// The grid gridify() lays over the city: the extent (options.extent, else cityExtent() snapped
+/// outwards to whole cells), north-up cells of options.cellSize, the city's CRS. Throws InvalidOption
+/// for a bad cell size or an extent without cells, InvalidInput when the city has nothing to grid.
+GridSpec gridFrame(const CityData& city, const GridifyOptions& options);
 
 /// Builds the grid. Throws InvalidOption when cellSize <= 0 or the extent holds no cell, InvalidInput
 /// when the city has nothing to grid.

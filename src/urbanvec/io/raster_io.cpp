@@ -2,10 +2,12 @@
 
 #include <cpl_string.h>
 #include <gdal_priv.h>
+#include <gdal_utils.h>
 #include <ogr_spatialref.h>
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 
@@ -121,6 +123,66 @@ Grid<T> readRasterBand(const std::string& path, const std::string& role, RasterI
   CPLErrorReset();
   if (ds->GetRasterBand(1)->RasterIO(GF_Read, w.xoff, w.yoff, grid.width, grid.height, grid.cells.data(),
                                      grid.width, grid.height, gdalType<T>(), 0, 0) != CE_None)
+    throw invalidInput(role + " '" + path + "' could not be read (" + lastGdalMessage() + ")");
+  if (infoOut) *infoOut = info;
+  return grid;
+}
+
+Grid<double> warpRasterBand(const std::string& path, const std::string& role, const GridSpec& target,
+                            const std::string& resampling, RasterInfo* infoOut) {
+  DatasetPtr ds = openRaster(path, role);
+  const RasterInfo info = describe(*ds);
+  double gt[6];
+  if (ds->GetGeoTransform(gt) != CE_None)
+    throw invalidInput(role + " '" + path +
+                       "' has no georeferencing (geotransform), so it cannot be placed on the grid");
+  if (info.spec.crsWkt.empty())
+    throw invalidInput(
+        role + " '" + path +
+        "' has no CRS, so it cannot be placed on the grid; give it one with gdal_edit -a_srs <crs>");
+  const auto& c = target.transform.c;
+  if (c[2] != 0.0 || c[4] != 0.0 || !(c[1] > 0.0) || !(c[5] < 0.0))
+    throw internalError("warpRasterBand: the target grid is not north-up");
+  const auto text = [](double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    return std::string(buf);
+  };
+  CPLStringList args;
+  for (const std::string& a : {std::string("-of"),
+                               std::string("MEM"),
+                               std::string("-t_srs"),
+                               target.crsWkt,
+                               std::string("-te"),
+                               text(c[0]),
+                               text(c[3] + target.height * c[5]),
+                               text(c[0] + target.width * c[1]),
+                               text(c[3]),
+                               std::string("-ts"),
+                               std::to_string(target.width),
+                               std::to_string(target.height),
+                               std::string("-r"),
+                               resampling,
+                               std::string("-ot"),
+                               std::string("Float64"),
+                               std::string("-dstnodata"),
+                               std::string("nan"),
+                               std::string("-wo"),
+                               std::string("INIT_DEST=NO_DATA")})
+    args.AddString(a.c_str());
+  CPLErrorReset();
+  GDALWarpAppOptions* options = GDALWarpAppOptionsNew(args.List(), nullptr);
+  if (!options) throw internalError(std::string("gdalwarp options refused (") + lastGdalMessage() + ")");
+  GDALDatasetH source = ds.get();
+  int usageError = 0;
+  DatasetPtr warped(static_cast<GDALDataset*>(GDALWarp("", nullptr, 1, &source, options, &usageError)));
+  GDALWarpAppOptionsFree(options);
+  if (!warped)
+    throw invalidInput(role + " '" + path + "' could not be warped onto the grid (" + lastGdalMessage() +
+                       ")");
+  Grid<double> grid(target.width, target.height);
+  if (warped->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, grid.width, grid.height, grid.cells.data(),
+                                         grid.width, grid.height, GDT_Float64, 0, 0) != CE_None)
     throw invalidInput(role + " '" + path + "' could not be read (" + lastGdalMessage() + ")");
   if (infoOut) *infoOut = info;
   return grid;

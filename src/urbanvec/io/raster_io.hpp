@@ -36,6 +36,13 @@ template <class T>
 Grid<T> readRasterBand(const std::string& path, const std::string& role, RasterInfo* info = nullptr,
                        const RasterWindow* window = nullptr);
 
+/// Band 1 of a raster in any CRS brought onto the north-up grid `target` with GDAL's warper
+/// (gdalwarp -t_srs -te -ts -r <resampling>), as doubles; NaN where the raster says nothing (its nodata,
+/// or outside it). Throws InvalidInput naming the file when it is unreadable, has no CRS or no
+/// georeferencing; `info` receives the source's description.
+Grid<double> warpRasterBand(const std::string& path, const std::string& role, const GridSpec& target,
+                            const std::string& resampling, RasterInfo* info = nullptr);
+
 /// The frame of `window` within `full` (checked as readRasterBand does; `path` names the raster).
 GridSpec windowSpec(const GridSpec& full, const RasterWindow& window, const std::string& role,
                     const std::string& path);

@@ -4,10 +4,15 @@
 #include "urbanvec/vectorize/roads/road_connection.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <limits>
+#include <optional>
 #include <unordered_map>
 
 #include "urbanvec/vectorize/roads/road_graph_build.hpp"
+#include "urbanvec/vectorize/roads/straightening.hpp"
+#include "urbanvec/vectorize/roads/through_roads.hpp"
 
 namespace urbanvec::vectorize {
 
@@ -36,6 +41,130 @@ bool nearInPrimaryGraph(const RoadGraph& graph, int a, int b, int hops) {
   return false;
 }
 
+/// The placements of the street arriving at connection node c: c's, then those of the nodes from
+/// its single secondary link on through two-link secondary nodes, up to `window` from c and
+/// including the first node of another kind (an intersection, whose cells may belong to the other
+/// street; `junction` tells the caller); empty when c has no single secondary link.
+std::vector<Vec2> streetPlacements(const RoadGraph& graph, int c, double window, bool& junction) {
+  junction = false;
+  int next = -1;
+  for (int m : graph.nodes[c].links)
+    if (graph.nodes[m].type == NodeType::Secondary) {
+      if (next >= 0) return {};
+      next = m;
+    }
+  if (next < 0) return {};
+  std::vector<Vec2> out{graph.nodes[c].placed};
+  int prev = c, cur = next;
+  while (distance(graph.nodes[cur].placed, graph.nodes[c].placed) <= window) {
+    out.push_back(graph.nodes[cur].placed);
+    if (graph.degree(cur) != 2) {
+      junction = graph.degree(cur) > 2;
+      break;
+    }
+    const auto& links = graph.nodes[cur].links;
+    const int after = links[0] == prev ? links[1] : links[0];
+    if (graph.nodes[after].type != NodeType::Secondary || after == c) break;
+    prev = cur;
+    cur = after;
+  }
+  return out;
+}
+
+constexpr double kRounding = 1e-9;  // a staircase's cells lie exactly on the band's edge
+
+/// How far the points lie from a line of their fitted (total least squares) direction, moved to the
+/// middle of their residuals (a digital line's cells are within the band of some line; the fit need
+/// not centre it), minus the band (|cos t| + |sin t|) / 2 of that direction: <= 0 when they are
+/// consistent with a digital straight line.
+double lineOffset(const std::vector<Vec2>& points) {
+  Vec2 centre, direction;
+  fitLine(points, centre, direction);
+  double lo = 0.0, hi = 0.0;
+  for (const Vec2& q : points) {
+    const double r = cross(direction, q - centre);
+    lo = std::min(lo, r);
+    hi = std::max(hi, r);
+  }
+  return (hi - lo) / 2 - digitalLineBand(direction);
+}
+
+/// Connection nodes that continue each other across a primary road (RoadConnectionOptions::
+/// crossingAngle), each with the primary node both link to; -1 for nodes without such a partner.
+std::vector<int> crossingNodes(const RoadGraph& graph, const NodeIndex& primaries,
+                               const RoadConnectionOptions& options, std::size_t& pairs) {
+  std::vector<int> target(graph.nodes.size(), -1);
+  if (!(options.crossingAngle > 0.0)) return target;
+  const double cosLimit = std::cos(options.crossingAngle * M_PI / 180.0);
+  std::vector<int> ends;
+  std::vector<std::vector<Vec2>> street(graph.nodes.size());
+  std::vector<char> trim(graph.nodes.size(), 0);  // the street's last placement is an intersection's
+  std::vector<Vec2> dir(graph.nodes.size());
+  for (size_t i = 0; i < graph.nodes.size(); ++i) {
+    const RoadNode& s = graph.nodes[i];
+    if (!s.alive || !s.psConnection || s.type != NodeType::Secondary) continue;
+    bool junction = false;
+    street[i] = streetPlacements(graph, static_cast<int>(i), options.crossingWindow, junction);
+    trim[i] = junction && street[i].size() > 2;
+    if (street[i].empty()) continue;
+    const Vec2 d = street[i].front() - street[i].back();
+    if (length(d) < 1.0) continue;
+    dir[i] = d / length(d);
+    ends.push_back(static_cast<int>(i));
+  }
+  std::vector<char> isEnd(graph.nodes.size(), 0);
+  for (int a : ends) isEnd[a] = 1;
+  const NodeIndex endIndex(graph, options.crossingReach, [&](int i) { return isEnd[i] != 0; });
+  // Each end's best partner: ahead of it, the streets' directions within crossingAngle of opposite,
+  // and the cells of both streets together consistent with one straight line (B7's rule: within
+  // (|cos t| + |sin t|) / 2 of a line, lineOffset <= 0); the straightest (smallest offset) wins.
+  std::vector<int> best(graph.nodes.size(), -1);
+  std::vector<double> bestOffset(graph.nodes.size(), 0.0);
+  std::vector<Vec2> both;
+  for (int a : ends) {
+    const Vec2 pa = graph.nodes[a].placed;
+    for (int b : endIndex.within(graph.nodes[a].p, options.crossingReach)) {
+      if (b == a) continue;
+      const Vec2 ab = graph.nodes[b].placed - pa;
+      if (dot(dir[a], ab) <= 0.0 || dot(dir[b], ab) >= 0.0 || -dot(dir[a], dir[b]) < cosLimit) continue;
+      // The smallest half-range of residuals, with or without each street's intersection cell.
+      double offset = std::numeric_limits<double>::infinity();
+      for (int ta = 0; ta <= trim[a]; ++ta)
+        for (int tb = 0; tb <= trim[b]; ++tb) {
+          both.assign(street[a].begin(), street[a].end() - ta);
+          both.insert(both.end(), street[b].begin(), street[b].end() - tb);
+          offset = std::min(offset, lineOffset(both));
+        }
+      if (offset > kRounding) continue;
+      if (best[a] < 0 || offset < bestOffset[a]) {
+        bestOffset[a] = offset;
+        best[a] = b;
+      }
+    }
+  }
+  for (int a : ends) {
+    const int b = best[a];
+    if (b < a || best[b] != a) continue;  // mutual, each pair once
+    const Vec2 pa = graph.nodes[a].p, pb = graph.nodes[b].p;
+    // The primary node nearest the line between them, strictly between them.
+    int p = -1;
+    double pd = 1.0;  // pw: a node on the primary's centreline the street passes over
+    for (int q : primaries.within((pa + pb) * 0.5, distance(pa, pb) / 2 + 1.0)) {
+      const Vec2 pq = graph.nodes[q].p;
+      if (distance(pq, pa) < 0.5 || distance(pq, pb) < 0.5) continue;
+      const double d = distanceToSegment(pq, pa, pb);
+      if (d < pd) {
+        pd = d;
+        p = q;
+      }
+    }
+    if (p < 0) continue;
+    target[a] = target[b] = p;
+    ++pairs;
+  }
+  return target;
+}
+
 }  // namespace
 
 RoadConnectionStats connectRoads(RoadGraph& graph, const RoadConnectionOptions& options,
@@ -50,11 +179,12 @@ RoadConnectionStats connectRoads(RoadGraph& graph, const RoadConnectionOptions& 
       if (p.alive && p.type == NodeType::Primary && p.col >= 0)
         primaryOfWindow.emplace(patchKey(p.col, p.row), static_cast<int>(i));
     }
+    const std::vector<int> crossing = crossingNodes(graph, primaries, options, stats.crossings);
     const size_t n = graph.nodes.size();
     for (size_t i = 0; i < n; ++i) {
       const RoadNode& s = graph.nodes[i];
       if (!s.alive || !s.psConnection || s.type != NodeType::Secondary) continue;
-      const int p = primaries.nearest(s.p, options.maxConnectionDistance);
+      const int p = crossing[i] >= 0 ? crossing[i] : primaries.nearest(s.p, options.maxConnectionDistance);
       if (p < 0) {
         ++stats.unconnected;
         continue;

@@ -263,6 +263,49 @@ TEST(Connection, SecondaryRoadMeetingAPrimaryIsLinkedToIt) {
     if (n.links.size() == 3) EXPECT_EQ(n.type, NodeType::Primary);
 }
 
+/// The primary nodes with a link to a secondary node, and how many such links each has.
+std::vector<std::pair<int, int>> primariesWithSecondaryLinks(const RoadGraph& g) {
+  std::vector<std::pair<int, int>> out;
+  for (size_t i = 0; i < g.nodes.size(); ++i) {
+    const RoadNode& n = g.nodes[i];
+    if (!n.alive || n.type != NodeType::Primary) continue;
+    int k = 0;
+    for (int m : n.links) k += g.nodes[m].type == NodeType::Secondary;
+    if (k) out.push_back({static_cast<int>(i), k});
+  }
+  return out;
+}
+
+TEST(Connection, AStreetCrossingAPrimaryAtASlantMeetsItAtOneNode) {
+  // A 45-degree secondary staircase crossing a 2-wide primary (rows 10-11): its two ends lie about
+  // 4 cells apart along the street, 3 along the primary. Linked each to its closest primary node they
+  // make two T-junctions; paired (issue 20) they make one 4-way crossing.
+  std::vector<std::string> rows(22, std::string(32, 'r'));
+  for (int k = 0; k < 22; ++k) {
+    rows[k][k + 4] = 's';
+    rows[k][k + 5] = 's';
+  }
+  rows[10] = rows[11] = std::string(32, 'P');
+  auto cells = drawGrid(rows);
+  cleanIntersectionPatches(cells);  // A3, as the pipeline runs it
+  RoadGraph g = buildRoadGraph(cells, {}).graph;
+  const RoadConnectionStats s = connectRoads(g, {});
+  EXPECT_EQ(s.crossings, 1u);
+  const auto joined = primariesWithSecondaryLinks(g);
+  ASSERT_EQ(joined.size(), 1u);
+  EXPECT_EQ(joined[0].second, 2);
+  EXPECT_EQ(countDegree(g, 4), 1);
+
+  auto cells2 = drawGrid(rows);
+  cleanIntersectionPatches(cells2);
+  RoadGraph g2 = buildRoadGraph(cells2, {}).graph;
+  RoadConnectionOptions documents;
+  documents.crossingAngle = 0;  // each end to its closest primary node
+  EXPECT_EQ(connectRoads(g2, documents).crossings, 0u);
+  EXPECT_EQ(primariesWithSecondaryLinks(g2).size(), 2u);
+  EXPECT_EQ(countDegree(g2, 4), 0);
+}
+
 TEST(CycleRemoval, ShortCycleLosesItsShortestSegmentUntilNoneIsLeft) {
   // A 2x3 block ring (14 nodes) and a 3x3 block ring (16 nodes) sharing the middle road.
   auto cells = drawGrid({
