@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "urbanvec/core/topology_simplify.hpp"
 #include "urbanvec/vectorize/parcels/spine_subdivision.hpp"
 
 namespace urbanvec::vectorize::parcels {
@@ -299,14 +300,12 @@ void prepare(SubdivisionParcel& parcel, const RegularSubdivisionOptions& options
              const RoadFrontage& frontage, const geos::Context& geos) {
   parcel.prepared = true;
   parcel.aspect = aspectOf(parcel.polygon);
-  Polygon simplified = parcel.polygon;
-  if (options.simplifyTolerance > 0.0) {
-    geos::GeomPtr g = geos.polygon(parcel.polygon);
-    geos::GeomPtr s = geos.own(
-        GEOSTopologyPreserveSimplify_r(geos.handle(), g.get(), options.simplifyTolerance), "simplify");
-    MultiPolygon parts = geos.toPolygons(s.get());
-    if (parts.size() == 1 && area(parts.front()) > 0.0) simplified = parts.front();
-  }
+  // GEOS's TopologyPreservingSimplifier rules in plain code (core/topology_simplify.hpp): the same
+  // copy without a GEOS geometry and two quadtrees per parcel (issue 21).
+  Polygon simplified;
+  if (options.simplifyTolerance > 0.0)
+    simplified = simplifyPreservingTopology(parcel.polygon, options.simplifyTolerance);
+  if (options.simplifyTolerance <= 0.0 || !(area(simplified) > 0.0)) simplified = parcel.polygon;
   // An edge of the simplified copy faces the road when it runs along road-facing lines, i.e. its
   // quarter points all lie within the simplification tolerance of them.
   const double near = options.simplifyTolerance + options.frontageTolerance;
