@@ -343,10 +343,10 @@ enum class LineSplit {
 };
 
 /// Splits a polygon by the piece of the line q + s·dir that lies inside it nearest q, when that piece
-/// runs from the outer ring to the outer ring; each hole goes to the side that contains it. Degenerate
-/// cases are left to GEOS: the line through a vertex or along an edge of any ring, the piece running
-/// from a hole back to the same hole (that cuts off a pocket), or a hole whose side is unclear because
-/// it touches the outer ring.
+/// runs from the outer ring to the outer ring (each hole goes to the side that contains it) or from a
+/// hole back to the same hole (it cuts off the pocket of parcel in a bay of the hole). Degenerate
+/// cases are left to GEOS: the line through a vertex or along an edge of any ring, or a hole whose
+/// side is unclear because it touches a ring of the cut.
 LineSplit splitPolygonByLine(const Polygon& polygon, const Vec2& q, const Vec2& dir,
                              std::array<Polygon, 2>& out) {
   struct Crossing {
@@ -395,11 +395,11 @@ LineSplit splitPolygonByLine(const Polygon& polygon, const Vec2& q, const Vec2& 
   const Crossing& a = crossings[pick];
   const Crossing& b = crossings[pick + 1];
   if (a.ring != b.ring) return LineSplit::NoSplit;
-  if (a.ring != 0) return LineSplit::Degenerate;
-  const Ring& ring = polygon.outer;
+  const Ring& ring = a.ring == 0 ? polygon.outer : polygon.holes[a.ring - 1];
   const size_t n = ring.size() - 1;
   auto walk = [&](const Crossing& from, const Crossing& to) {
     Ring r{from.point};
+    r.reserve(n + 3);
     for (size_t i = (from.edge + 1) % n;; i = (i + 1) % n) {
       r.push_back(ring[i]);
       if (i == to.edge) break;
@@ -408,6 +408,29 @@ LineSplit splitPolygonByLine(const Polygon& polygon, const Vec2& q, const Vec2& 
     r.push_back(from.point);
     return r;
   };
+  if (a.ring != 0) {
+    // The piece runs from a hole back to the same hole across the mouth of a bay of it: the chord
+    // and the arc of the hole around the bay close the pocket of parcel in the bay (the smaller of the
+    // two rings: the other one also holds the hole), and the rest of the parcel gets the hole grown by
+    // that pocket. The other holes go to the side that contains them.
+    Ring first = walk(a, b), second = walk(b, a);
+    const bool firstIsPocket = std::fabs(signedArea(first)) < std::fabs(signedArea(second));
+    Ring& pocket = firstIsPocket ? first : second;
+    Ring& grown = firstIsPocket ? second : first;
+    const bool outerPositive = signedArea(polygon.outer) > 0.0, holePositive = signedArea(ring) > 0.0;
+    if ((signedArea(pocket) > 0.0) != outerPositive) std::reverse(pocket.begin(), pocket.end());
+    if ((signedArea(grown) > 0.0) != holePositive) std::reverse(grown.begin(), grown.end());
+    out[0] = Polygon{std::move(pocket), {}};
+    out[1] = Polygon{polygon.outer, {std::move(grown)}};
+    for (size_t h = 0; h < polygon.holes.size(); ++h) {
+      if (h + 1 == a.ring) continue;
+      const Ring& hole = polygon.holes[h];
+      const bool inFirst = insideRing(hole[0], out[0].outer), inSecond = insideRing(hole[1], out[0].outer);
+      if (inFirst != inSecond) return LineSplit::Degenerate;
+      out[inFirst ? 0 : 1].holes.push_back(hole);
+    }
+    return LineSplit::Split;
+  }
   out[0] = Polygon{walk(a, b), {}};
   out[1] = Polygon{walk(b, a), {}};
   // The chord meets no hole, so each hole lies wholly on one side. A valid hole touches the outer ring
