@@ -355,18 +355,29 @@ LineSplit splitPolygonByLine(const Polygon& polygon, const Vec2& q, const Vec2& 
     size_t edge;
     Vec2 point;
   };
-  std::vector<Crossing> crossings;
+  thread_local std::vector<Crossing> crossings;  // reused: one split test per try and parcel
+  crossings.clear();
   auto addCrossings = [&](const Ring& ring, size_t ringIndex) {
+    double next = ring.empty() ? 0.0 : cross(ring[0] - q, dir);
     for (size_t i = 0; i + 1 < ring.size(); ++i) {
       const Vec2 p0 = ring[i], e = ring[i + 1] - ring[i];
+      // Both ends clearly on one side of the line (most edges): no crossing, not along the edge and
+      // not through a vertex, so the tests below would skip the edge too; their thresholds are far
+      // inside these margins.
+      const double side0 = next, side1 = cross(ring[i + 1] - q, dir);
+      next = side1;
+      if ((side0 > 1e-9 && side1 > 1e-9) || (side0 < -1e-9 && side1 < -1e-9)) {
+        const double near = std::min(std::fabs(side0), std::fabs(side1));
+        if (near > 1e-6 * std::max(std::fabs(side0), std::fabs(side1))) continue;
+      }
       const double denom = cross(dir, e);
       const double scale = length(e);
       if (scale <= 0.0) continue;
       if (std::fabs(denom) <= 1e-12 * scale) {
-        if (std::fabs(cross(p0 - q, dir)) <= 1e-9) return false;  // along the edge
+        if (std::fabs(side0) <= 1e-9) return false;  // along the edge
         continue;
       }
-      const double u = cross(p0 - q, dir) / denom;
+      const double u = side0 / denom;
       if (u < -1e-12 || u > 1.0 + 1e-12) continue;
       if (u < 1e-9 || u > 1.0 - 1e-9) return false;  // through a vertex
       const double s = cross(p0 - q, e) / denom;
