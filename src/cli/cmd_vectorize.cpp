@@ -71,6 +71,13 @@ app::CommandSpec spec() {
                      "Generate-and-test iterations per block; the lowest-cost parcelling is kept (E5).")
                   .byDefault(std::to_string(vectorize::parcels::ParcelsOptions{}.tries))
                   .atLeast(1));
+  o.push_back(option("-patience", ValueType::Integer, "<n>",
+                     "Stop a block's search once its best parcelling is complete and has not improved for n "
+                     "tries in a row (0 = always run all -tries). Trades parcel cost for time; see "
+                     "docs/performance.md.")
+                  .byDefault(std::to_string(vectorize::parcels::ParcelsOptions{}.patience))
+                  .atLeast(0)
+                  .isAdvanced());
   o.push_back(
       option("-spine-method", ValueType::Choice, "<method>",
              "How block spines are found (D6): the thesis's Zhang-Suen thinning or CGAL's straight skeleton.")
@@ -280,6 +287,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   options.roadsOnly = args.flag("-roads-only");
   options.city.parcels.seed = static_cast<std::uint64_t>(args.integer("-seed"));
   options.city.parcels.tries = static_cast<int>(args.integer("-tries"));
+  options.city.parcels.patience = static_cast<int>(args.integer("-patience"));
   options.city.parcels.threads = static_cast<int>(args.integer("-threads"));
   options.city.parcels.spine.method = *vectorize::parcels::parseSpineMethod(args.str("-spine-method"));
   const bool debug = args.given("-debug-stages");

@@ -2,9 +2,12 @@
 #include "urbanvec/vectorize/blocks/blocks_pipeline.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/core/geos.hpp"
@@ -50,6 +53,42 @@ std::vector<Polygon> layerPolygons(const Layer* layer, const std::string& kindFi
   return out;
 }
 
+/// waterPolygons on a thread of its own when more than one thread is allowed (WaterSplitOptions::threads);
+/// joined by join() or, on an exception of the caller (cancel), stopped and joined by the destructor.
+class ConcurrentWater {
+ public:
+  ConcurrentWater(const Grid<LandUse>& landUse, const WaterSplitOptions& options) {
+    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+    const unsigned threads = options.threads > 0 ? static_cast<unsigned>(options.threads) : cores;
+    if (threads < 2) return;
+    thread_ = std::thread([this, &landUse, &options] {
+      try {
+        water_ = waterPolygons(landUse, options, [this](double, std::string_view) { return !stop_.load(); });
+      } catch (...) {
+        failure_ = std::current_exception();
+      }
+    });
+  }
+  ConcurrentWater(const ConcurrentWater&) = delete;
+  ConcurrentWater& operator=(const ConcurrentWater&) = delete;
+  ~ConcurrentWater() {
+    stop_ = true;
+    if (thread_.joinable()) thread_.join();
+  }
+  bool started() const { return thread_.joinable(); }
+  MultiPolygon join() {
+    thread_.join();
+    if (failure_) std::rethrow_exception(failure_);
+    return std::move(water_);
+  }
+
+ private:
+  std::thread thread_;
+  std::atomic<bool> stop_{false};
+  MultiPolygon water_;
+  std::exception_ptr failure_;
+};
+
 }  // namespace
 
 BlocksResult vectorizeBlocks(const RoadNetwork& network, const SimulatedCity& city, const GridSpec& grid,
@@ -67,13 +106,24 @@ BlocksResult vectorizeBlocks(const RoadNetwork& network, const SimulatedCity& ci
   RoadGeometry roads = buildRoadGeometry(network, options.road, subProgress(progress, 0.0, 0.35));
   stats.convexHullFallbacks = roads.convexHullFallbacks;
 
+  // The water regions depend on the land-use grid alone: with more than one thread they are traced on
+  // a second thread while D1's union of all pavement (one GEOS call, one core) runs (issue 21). Same
+  // result either way; the water stage's progress is reported once it is joined.
+  MultiPolygon water;
+  ConcurrentWater concurrentWater(city.grid, options.water);
+  if (!concurrentWater.started())
+    water = waterPolygons(city.grid, options.water, subProgress(progress, 0.5, 0.6));
+
   // D1: internal blocks and the perimeter.
   BlockOutline outline = outlineBlocks(roads.pieces, options.outline, subProgress(progress, 0.35, 0.5));
   result.perimeterCells = outline.perimeter;
   stats.absorbedSlivers = absorbSlivers(roads.pieces, outline.slivers, options.outline.precisionGrid);
 
   // D3 + D4: external blocks from the perimeter and the boundary lines.
-  MultiPolygon water = waterPolygons(city.grid, options.water, subProgress(progress, 0.5, 0.6));
+  if (concurrentWater.started()) {
+    water = concurrentWater.join();
+    reportProgress(progress, 0.6, "water");
+  }
   ExternalBlocks external = buildExternalBlocks(network, outline.perimeter, city, blockOfCell,
                                                 options.external, subProgress(progress, 0.6, 0.75));
   stats.boundaryLines = external.boundaryLines;

@@ -35,6 +35,8 @@ int countUndeveloped(const std::vector<UseChoice>& uses) {
 
 void validateParcelsOptions(const ParcelsOptions& o) {
   if (o.tries < 1) throw invalidOption("-tries must be at least 1, got " + std::to_string(o.tries) + ".");
+  if (o.patience < 0)
+    throw invalidOption("-patience must be 0 (all tries) or more, got " + std::to_string(o.patience) + ".");
   if (o.relaxationRounds < 0 || o.relaxedTries < 1)
     throw invalidOption("relaxation rounds must be non-negative and relaxed tries at least 1.");
   if (o.threads < 0) throw invalidOption("the thread count must be 0 (all cores) or more.");
@@ -128,9 +130,16 @@ BlockParcels parcelBlock(const ParcelBlock& block, const ParcelsOptions& options
     int relaxed = 0;
   } best;
 
+  // One buffer for the try's parcels: copy-assigning the start parcels into it reuses the memory of
+  // the last try's polygons (a new vector only after a try became the best and took the buffer).
+  std::vector<SubdivisionParcel> parcels;
   auto runTries = [&](const SplitRules& rules, int tries, int relaxed) {
+    int lastImprovement = 0;
     for (int attempt = 0; attempt < tries; ++attempt) {
-      std::vector<SubdivisionParcel> parcels = initialParcels;
+      if (options.patience > 0 && best.set && best.missing == 0 && best.relaxed == relaxed &&
+          attempt - lastImprovement >= options.patience)
+        break;
+      parcels.assign(initialParcels.begin(), initialParcels.end());
       SplitStats stats;
       int target = std::max(simCount, static_cast<int>(parcels.size()));
       subdivide(parcels, target, rules, options.regular, frontage, geos, rng, stats);  // E2
@@ -159,13 +168,14 @@ BlockParcels parcelBlock(const ParcelBlock& block, const ParcelsOptions& options
         best.cost = cost.total();
         best.parts = cost;
         best.target = target;
-        best.parcels = std::move(parcels);
+        std::swap(best.parcels, parcels);  // the old best's memory serves the next try
         best.uses = std::move(uses);
         best.shortfall =
             missing > 0 ? (rules.minFrontage > 0.0 && frontage.empty() ? "block has no road-facing boundary"
                                                                        : stats.shortfallReason())
                         : std::string();
         best.relaxed = relaxed;
+        lastImprovement = attempt;
       }
     }
   };

@@ -29,6 +29,11 @@ struct ParcelsOptions {
   ScoringOptions scoring;                    ///< E5
   /// Generate-and-test iterations per block; the lowest cost is kept (spec §5.4: 50; `-tries`).
   int tries = 50;
+  /// Anytime search (issue 21, beyond the documents): a block stops trying once its best result is
+  /// complete (no parcel short of the target) and has not improved for this many tries in a row
+  /// (`-patience`). 0 = always run all `tries` (the paper's search). docs/performance.md has the curve
+  /// of the mean best cost against tries and what each patience saves and costs.
+  int patience = 0;
   /// [INFERENCE, beyond the documents] When every try ends short of its target, up to this many
   /// rounds of `relaxedTries` tries follow, each halving the size (constraint 1) and rectangularity
   /// (constraint 3) thresholds of the round before; road access (constraint 2) is never relaxed. The

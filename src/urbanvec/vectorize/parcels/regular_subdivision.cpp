@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "urbanvec/core/topology_simplify.hpp"
 #include "urbanvec/vectorize/parcels/spine_subdivision.hpp"
 
 namespace urbanvec::vectorize::parcels {
@@ -299,14 +300,12 @@ void prepare(SubdivisionParcel& parcel, const RegularSubdivisionOptions& options
              const RoadFrontage& frontage, const geos::Context& geos) {
   parcel.prepared = true;
   parcel.aspect = aspectOf(parcel.polygon);
-  Polygon simplified = parcel.polygon;
-  if (options.simplifyTolerance > 0.0) {
-    geos::GeomPtr g = geos.polygon(parcel.polygon);
-    geos::GeomPtr s = geos.own(
-        GEOSTopologyPreserveSimplify_r(geos.handle(), g.get(), options.simplifyTolerance), "simplify");
-    MultiPolygon parts = geos.toPolygons(s.get());
-    if (parts.size() == 1 && area(parts.front()) > 0.0) simplified = parts.front();
-  }
+  // GEOS's TopologyPreservingSimplifier rules in plain code (core/topology_simplify.hpp): the same
+  // copy without a GEOS geometry and two quadtrees per parcel (issue 21).
+  Polygon simplified;
+  if (options.simplifyTolerance > 0.0)
+    simplified = simplifyPreservingTopology(parcel.polygon, options.simplifyTolerance);
+  if (options.simplifyTolerance <= 0.0 || !(area(simplified) > 0.0)) simplified = parcel.polygon;
   // An edge of the simplified copy faces the road when it runs along road-facing lines, i.e. its
   // quarter points all lie within the simplification tolerance of them.
   const double near = options.simplifyTolerance + options.frontageTolerance;
@@ -344,10 +343,10 @@ enum class LineSplit {
 };
 
 /// Splits a polygon by the piece of the line q + s·dir that lies inside it nearest q, when that piece
-/// runs from the outer ring to the outer ring; each hole goes to the side that contains it. Degenerate
-/// cases are left to GEOS: the line through a vertex or along an edge of any ring, the piece running
-/// from a hole back to the same hole (that cuts off a pocket), or a hole whose side is unclear because
-/// it touches the outer ring.
+/// runs from the outer ring to the outer ring (each hole goes to the side that contains it) or from a
+/// hole back to the same hole (it cuts off the pocket of parcel in a bay of the hole). Degenerate
+/// cases are left to GEOS: the line through a vertex or along an edge of any ring, or a hole whose
+/// side is unclear because it touches a ring of the cut.
 LineSplit splitPolygonByLine(const Polygon& polygon, const Vec2& q, const Vec2& dir,
                              std::array<Polygon, 2>& out) {
   struct Crossing {
@@ -356,18 +355,29 @@ LineSplit splitPolygonByLine(const Polygon& polygon, const Vec2& q, const Vec2& 
     size_t edge;
     Vec2 point;
   };
-  std::vector<Crossing> crossings;
+  thread_local std::vector<Crossing> crossings;  // reused: one split test per try and parcel
+  crossings.clear();
   auto addCrossings = [&](const Ring& ring, size_t ringIndex) {
+    double next = ring.empty() ? 0.0 : cross(ring[0] - q, dir);
     for (size_t i = 0; i + 1 < ring.size(); ++i) {
       const Vec2 p0 = ring[i], e = ring[i + 1] - ring[i];
+      // Both ends clearly on one side of the line (most edges): no crossing, not along the edge and
+      // not through a vertex, so the tests below would skip the edge too; their thresholds are far
+      // inside these margins.
+      const double side0 = next, side1 = cross(ring[i + 1] - q, dir);
+      next = side1;
+      if ((side0 > 1e-9 && side1 > 1e-9) || (side0 < -1e-9 && side1 < -1e-9)) {
+        const double near = std::min(std::fabs(side0), std::fabs(side1));
+        if (near > 1e-6 * std::max(std::fabs(side0), std::fabs(side1))) continue;
+      }
       const double denom = cross(dir, e);
       const double scale = length(e);
       if (scale <= 0.0) continue;
       if (std::fabs(denom) <= 1e-12 * scale) {
-        if (std::fabs(cross(p0 - q, dir)) <= 1e-9) return false;  // along the edge
+        if (std::fabs(side0) <= 1e-9) return false;  // along the edge
         continue;
       }
-      const double u = cross(p0 - q, dir) / denom;
+      const double u = side0 / denom;
       if (u < -1e-12 || u > 1.0 + 1e-12) continue;
       if (u < 1e-9 || u > 1.0 - 1e-9) return false;  // through a vertex
       const double s = cross(p0 - q, e) / denom;
@@ -396,11 +406,11 @@ LineSplit splitPolygonByLine(const Polygon& polygon, const Vec2& q, const Vec2& 
   const Crossing& a = crossings[pick];
   const Crossing& b = crossings[pick + 1];
   if (a.ring != b.ring) return LineSplit::NoSplit;
-  if (a.ring != 0) return LineSplit::Degenerate;
-  const Ring& ring = polygon.outer;
+  const Ring& ring = a.ring == 0 ? polygon.outer : polygon.holes[a.ring - 1];
   const size_t n = ring.size() - 1;
   auto walk = [&](const Crossing& from, const Crossing& to) {
     Ring r{from.point};
+    r.reserve(n + 3);
     for (size_t i = (from.edge + 1) % n;; i = (i + 1) % n) {
       r.push_back(ring[i]);
       if (i == to.edge) break;
@@ -409,6 +419,29 @@ LineSplit splitPolygonByLine(const Polygon& polygon, const Vec2& q, const Vec2& 
     r.push_back(from.point);
     return r;
   };
+  if (a.ring != 0) {
+    // The piece runs from a hole back to the same hole across the mouth of a bay of it: the chord
+    // and the arc of the hole around the bay close the pocket of parcel in the bay (the smaller of the
+    // two rings: the other one also holds the hole), and the rest of the parcel gets the hole grown by
+    // that pocket. The other holes go to the side that contains them.
+    Ring first = walk(a, b), second = walk(b, a);
+    const bool firstIsPocket = std::fabs(signedArea(first)) < std::fabs(signedArea(second));
+    Ring& pocket = firstIsPocket ? first : second;
+    Ring& grown = firstIsPocket ? second : first;
+    const bool outerPositive = signedArea(polygon.outer) > 0.0, holePositive = signedArea(ring) > 0.0;
+    if ((signedArea(pocket) > 0.0) != outerPositive) std::reverse(pocket.begin(), pocket.end());
+    if ((signedArea(grown) > 0.0) != holePositive) std::reverse(grown.begin(), grown.end());
+    out[0] = Polygon{std::move(pocket), {}};
+    out[1] = Polygon{polygon.outer, {std::move(grown)}};
+    for (size_t h = 0; h < polygon.holes.size(); ++h) {
+      if (h + 1 == a.ring) continue;
+      const Ring& hole = polygon.holes[h];
+      const bool inFirst = insideRing(hole[0], out[0].outer), inSecond = insideRing(hole[1], out[0].outer);
+      if (inFirst != inSecond) return LineSplit::Degenerate;
+      out[inFirst ? 0 : 1].holes.push_back(hole);
+    }
+    return LineSplit::Split;
+  }
   out[0] = Polygon{walk(a, b), {}};
   out[1] = Polygon{walk(b, a), {}};
   // The chord meets no hole, so each hole lies wholly on one side. A valid hole touches the outer ring

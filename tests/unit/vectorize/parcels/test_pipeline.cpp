@@ -295,3 +295,39 @@ TEST(Pipeline, BlockSmallerThanItsSimulatedParcelsScalesTheMinimumSize) {
   EXPECT_EQ(relaxed.report.relaxedRules, 1);
   EXPECT_TRUE(relaxed.report.shortfall.empty());
 }
+
+TEST(Pipeline, PatienceStopsABlockWhoseCompleteBestStopsImprovingAndKeepsItsPrefix) {
+  // -patience p (issue 21): a block stops once its complete best has not improved for p tries. The
+  // tries it runs are the first tries of the full search (same seed stream), so its best is the best
+  // of that prefix: never cheaper than the full search's, and equal to it when the full search found
+  // nothing better later.
+  const std::vector<ParcelBlock> blocks = randomCity(12, 21);
+  ParcelsOptions full;
+  full.threads = 1;
+  ParcelsOptions patient = full;
+  patient.patience = 3;
+  const ParcelsResult a = vectorizeParcels(blocks, full);
+  const ParcelsResult b = vectorizeParcels(blocks, patient);
+  int fewer = 0, total = 0, patientTotal = 0;
+  for (size_t k = 0; k < blocks.size(); ++k) {
+    const BlockReport& ra = a.blocks[k].report;
+    const BlockReport& rb = b.blocks[k].report;
+    total += ra.tries;
+    patientTotal += rb.tries;
+    if (ra.parcels < ra.targetParcels || blocks[k].sim.parcels.empty()) continue;
+    EXPECT_LE(rb.tries, ra.tries);
+    EXPECT_GE(rb.cost, ra.cost - 1e-9) << "block " << ra.blockId;
+    fewer += rb.tries < ra.tries;
+  }
+  EXPECT_GE(fewer, 6);                      // most complete blocks stop early
+  EXPECT_LT(patientTotal, total * 6 / 10);  // and the search is much shorter
+  // 0 = all tries; a negative patience is an option error.
+  patient.patience = -1;
+  try {
+    vectorizeParcels(blocks, patient);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::InvalidOption);
+    EXPECT_EQ(std::string(e.what()), "-patience must be 0 (all tries) or more, got -1.");
+  }
+}

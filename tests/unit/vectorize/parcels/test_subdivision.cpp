@@ -190,3 +190,40 @@ TEST(RoadFrontageMeasure, FastAndGeosFormsAgree) {
   EXPECT_GT(fronting, 0);
   EXPECT_LT(fronting, static_cast<int>(parcels.size()));
 }
+
+TEST(RegularSubdivision, ACutAcrossTheMouthOfACourtyardBayCutsOffThePocket) {
+  // A courtyard shaped like an upside-down U: its bay (x 4..6, y 3..6) is parcel land reached from the
+  // south. The only road-facing edge is the bay's west side, so every cut runs east across the bay
+  // from the courtyard back to the courtyard and cuts off the pocket above it (issue 21: plain code,
+  // no GEOS noding). The two children tile the parcel and are valid.
+  geos::Context geos;
+  Polygon block = box(0, 0, 10, 10);
+  block.holes.push_back({{3, 3}, {4, 3}, {4, 6}, {6, 6}, {6, 3}, {7, 3}, {7, 8}, {3, 8}, {3, 3}});
+  const double blockArea = area(block);
+  ASSERT_NEAR(blockArea, 86.0, 1e-12);
+  RoadFrontage road(geos, {{{4, 3}, {4, 6}}}, 1e-4);
+  SplitRules rules = looseRules();
+  RegularSubdivisionOptions options;
+  int accepted = 0;
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    Rng rng(seed);
+    SubdivisionParcel parcel(block);
+    std::array<Polygon, 2> children;
+    if (trySplit(parcel, rules, options, road, geos, rng, children) != SplitVerdict::Accepted) continue;
+    ++accepted;
+    EXPECT_NEAR(area(children[0]) + area(children[1]), blockArea, 1e-9);
+    for (const Polygon& c : children) EXPECT_EQ(GEOSisValid_r(geos.handle(), geos.polygon(c).get()), 1);
+    const Polygon& pocket = children[0].holes.empty() ? children[0] : children[1];
+    const Polygon& rest = children[0].holes.empty() ? children[1] : children[0];
+    ASSERT_TRUE(pocket.holes.empty());
+    ASSERT_EQ(rest.holes.size(), 1u);
+    for (const Vec2& p : pocket.outer) {
+      EXPECT_GE(p.x, 4.0 - 1e-12);
+      EXPECT_LE(p.x, 6.0 + 1e-12);
+      EXPECT_GE(p.y, 3.0);
+      EXPECT_LE(p.y, 6.0 + 1e-12);
+    }
+    EXPECT_NEAR(std::fabs(signedArea(rest.holes.front())), 14.0 + area(pocket), 1e-9);  // the grown courtyard
+  }
+  EXPECT_GE(accepted, 10);
+}

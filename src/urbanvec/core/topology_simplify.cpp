@@ -1,0 +1,192 @@
+// Topology-preserving polygon simplification (issue 21); see the header for the rules.
+#include "urbanvec/core/topology_simplify.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace urbanvec {
+
+namespace {
+
+/// Sign of the orientation of abc (+1 left turn, -1 right turn, 0 collinear). Double precision with
+/// Shewchuk's error bound; within it, the determinant again in 113-bit precision, where the
+/// differences and products of the coordinates are exact.
+int orientationSign(const Vec2& a, const Vec2& b, const Vec2& c) {
+  const double left = (b.x - a.x) * (c.y - a.y), right = (b.y - a.y) * (c.x - a.x);
+  const double det = left - right;
+  const double bound = 3.3306690738754716e-16 * (std::fabs(left) + std::fabs(right));
+  if (det > bound) return 1;
+  if (-det > bound) return -1;
+  using Wide = __float128;
+  const Wide exact =
+      (Wide(b.x) - Wide(a.x)) * (Wide(c.y) - Wide(a.y)) - (Wide(b.y) - Wide(a.y)) * (Wide(c.x) - Wide(a.x));
+  return exact > 0 ? 1 : exact < 0 ? -1 : 0;
+}
+
+struct Box {
+  double minX, minY, maxX, maxY;
+  Box(const Vec2& a, const Vec2& b)
+      : minX(std::min(a.x, b.x)),
+        minY(std::min(a.y, b.y)),
+        maxX(std::max(a.x, b.x)),
+        maxY(std::max(a.y, b.y)) {}
+  bool meets(const Box& o) const {
+    return minX <= o.maxX && o.minX <= maxX && minY <= o.maxY && o.minY <= maxY;
+  }
+  bool holds(const Vec2& p) const { return minX <= p.x && p.x <= maxX && minY <= p.y && p.y <= maxY; }
+};
+
+/// Distance from p to the segment ab, in the order of operations GEOS uses (so the tolerance test
+/// decides alike on the boundary).
+double pointSegmentDistance(const Vec2& p, const Vec2& a, const Vec2& b) {
+  if (a.x == b.x && a.y == b.y) return std::sqrt((p.x - a.x) * (p.x - a.x) + (p.y - a.y) * (p.y - a.y));
+  const double len2 = (b.x - a.x) * (b.x - a.x) + (b.y - a.y) * (b.y - a.y);
+  const double r = ((p.x - a.x) * (b.x - a.x) + (p.y - a.y) * (b.y - a.y)) / len2;
+  if (r <= 0.0) return std::sqrt((p.x - a.x) * (p.x - a.x) + (p.y - a.y) * (p.y - a.y));
+  if (r >= 1.0) return std::sqrt((p.x - b.x) * (p.x - b.x) + (p.y - b.y) * (p.y - b.y));
+  const double s = ((a.y - p.y) * (b.x - a.x) - (a.x - p.x) * (b.y - a.y)) / len2;
+  return std::fabs(s) * std::sqrt(len2);
+}
+
+struct Segment {
+  Vec2 a, b;
+  Box box;
+  std::uint32_t ring;
+  std::uint32_t index;  ///< segment index within its ring
+  bool alive;           ///< still in the input (not under a chord kept so far)
+};
+
+class Simplifier {
+ public:
+  Simplifier(const std::vector<const Ring*>& rings, double tolerance) : rings_(rings), tolerance_(tolerance) {
+    for (std::uint32_t r = 0; r < rings.size(); ++r) {
+      const Ring& ring = *rings[r];
+      ringStart_.push_back(static_cast<std::uint32_t>(input_.size()));
+      for (std::uint32_t i = 0; i + 1 < ring.size(); ++i)
+        input_.push_back({ring[i], ring[i + 1], Box(ring[i], ring[i + 1]), r, i, true});
+    }
+  }
+
+  Ring simplifyRing(std::uint32_t r) {
+    ring_ = r;
+    const Ring& points = *rings_[r];
+    result_.clear();
+    resultSegments_ = 0;
+    if (points.empty()) return {};
+    section(0, points.size() - 1, 0);
+    result_.push_back(points.back());
+    return result_;
+  }
+
+ private:
+  static constexpr size_t kMinimumRingSize = 4;
+
+  size_t resultSize() const { return resultSegments_ == 0 ? 0 : resultSegments_ + 1; }
+
+  void section(size_t i, size_t j, size_t depth) {
+    const Ring& points = *rings_[ring_];
+    ++depth;
+    if (i + 1 == j) {  // a single input segment stays (and stays in the input)
+      keep(points[i]);
+      return;
+    }
+    bool valid = true;
+    if (resultSize() < kMinimumRingSize && depth + 1 < kMinimumRingSize) valid = false;
+    double farthest = -1.0;
+    size_t farthestIndex = i;
+    for (size_t k = i + 1; k < j; ++k) {
+      const double d = pointSegmentDistance(points[k], points[i], points[j]);
+      if (d > farthest) {
+        farthest = d;
+        farthestIndex = k;
+      }
+    }
+    if (farthest > tolerance_) valid = false;
+    if (valid && badIntersection(points[i], points[j], i, j)) valid = false;
+    if (valid) {
+      const std::uint32_t start = ringStart_[ring_];
+      for (size_t k = i; k < j; ++k) input_[start + k].alive = false;
+      output_.push_back({points[i], points[j], Box(points[i], points[j]), ring_, 0, true});
+      keep(points[i]);
+      return;
+    }
+    section(i, farthestIndex, depth);
+    section(farthestIndex, j, depth);
+  }
+
+  void keep(const Vec2& p) {
+    result_.push_back(p);
+    ++resultSegments_;
+  }
+
+  bool badIntersection(const Vec2& a, const Vec2& b, size_t i, size_t j) const {
+    const Box box(a, b);
+    for (const Segment& s : output_)
+      if (s.box.meets(box) && segmentsMeetInside(s.a, s.b, a, b)) return true;
+    for (const Segment& s : input_) {
+      if (!s.alive || !s.box.meets(box)) continue;
+      if (s.ring == ring_ && s.index >= i && s.index < j) continue;  // part of the section itself
+      if (segmentsMeetInside(s.a, s.b, a, b)) return true;
+    }
+    return false;
+  }
+
+  const std::vector<const Ring*>& rings_;
+  double tolerance_;
+  std::vector<Segment> input_, output_;
+  std::vector<std::uint32_t> ringStart_;
+  std::uint32_t ring_ = 0;
+  Ring result_;
+  size_t resultSegments_ = 0;
+};
+
+}  // namespace
+
+bool segmentsMeetInside(const Vec2& p0, const Vec2& p1, const Vec2& q0, const Vec2& q1) {
+  const Box pb(p0, p1), qb(q0, q1);
+  if (!pb.meets(qb)) return false;
+  const int pq0 = orientationSign(p0, p1, q0), pq1 = orientationSign(p0, p1, q1);
+  if (pq0 * pq1 > 0) return false;
+  const int qp0 = orientationSign(q0, q1, p0), qp1 = orientationSign(q0, q1, p1);
+  if (qp0 * qp1 > 0) return false;
+  auto endOfP = [&](const Vec2& v) { return v == p0 || v == p1; };
+  auto endOfQ = [&](const Vec2& v) { return v == q0 || v == q1; };
+  if (pq0 == 0 && pq1 == 0 && qp0 == 0 && qp1 == 0) {
+    // Collinear: the shared points are those ends that lie on the other segment; the contact is
+    // inside unless each of them is an end of both segments.
+    for (const Vec2& v : {p0, p1})
+      if (qb.holds(v) && !endOfQ(v)) return true;
+    for (const Vec2& v : {q0, q1})
+      if (pb.holds(v) && !endOfP(v)) return true;
+    return false;
+  }
+  // One contact point: inside unless it is a common end.
+  return !(endOfQ(p0) || endOfQ(p1));
+}
+
+Polygon simplifyPreservingTopology(const Polygon& polygon, double tolerance) {
+  std::vector<Ring> closed;
+  closed.reserve(1 + polygon.holes.size());
+  auto close = [](const Ring& r) {
+    Ring c = r;
+    if (!c.empty() && c.front() != c.back()) c.push_back(c.front());
+    return c;
+  };
+  closed.push_back(close(polygon.outer));
+  for (const Ring& h : polygon.holes) closed.push_back(close(h));
+  std::vector<const Ring*> rings;
+  for (const Ring& r : closed) rings.push_back(&r);
+  Simplifier simplifier(rings, tolerance);
+  Polygon out;
+  for (std::uint32_t r = 0; r < rings.size(); ++r) {
+    Ring s = rings[r]->size() < 4 ? *rings[r] : simplifier.simplifyRing(r);
+    if (r == 0)
+      out.outer = std::move(s);
+    else
+      out.holes.push_back(std::move(s));
+  }
+  return out;
+}
+
+}  // namespace urbanvec
