@@ -92,6 +92,10 @@ app::CommandSpec spec() {
                      "Collapse every vertex as the thesis does, also two where lines already meet exactly "
                      "(default: only free ends collapse).")
                   .isAdvanced());
+  o.push_back(option("-drawing-order", ValueType::Flag, "",
+                     "Collapse vertices in drawing order as the thesis does (default: closest pairs first, "
+                     "whatever the order of the drawing).")
+                  .isAdvanced());
   o.push_back(
       option("-straighten", ValueType::Real, "<share>",
              "Drop degree-2 vertices closer than this share of -collapse to the line of their neighbours "
@@ -228,6 +232,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
                         "; the Collapsing Threshold must not exceed the Block Threshold");
   options.thesisRevert = args.flag("-thesis-revert");
   options.freeEndsOnly = !args.flag("-collapse-all");
+  options.closestFirst = !args.flag("-drawing-order");
   options.straightenShare = args.real("-straighten");
   options.minFaceArea = args.real("-min-area");
   options.labelSearchDistance = args.real("-label-distance");

@@ -56,7 +56,7 @@ CadastreResult structureCadastre(const std::vector<CadLine>& lines, const std::v
   // §A.4 vertex cleaning, §A.5 segment cleaning.
   CollapseStats cs;
   Linework lw = collapseVertices(lines, o.collapsingThreshold, cs, subProgress(progress, 0.0, 0.15),
-                                 o.thesisRevert, o.freeEndsOnly);
+                                 o.thesisRevert, o.freeEndsOnly, o.closestFirst);
   rep.inputVertices = cs.inputVertices;
   rep.outputVertices = cs.outputVertices;
   rep.collapsedShare = cs.collapsedShare();

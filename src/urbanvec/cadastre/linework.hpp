@@ -59,6 +59,10 @@ struct CadastreOptions {
   /// original is split off); false (measured better: a reverted cluster leaves slivers) keeps the new
   /// vertex apart and the representative whole. Either way no cluster grows wider than the threshold.
   bool thesisRevert = false;
+  /// Beyond the thesis: collapse the closest pairs of coordinates first (agglomerative, independent
+  /// of the drawing order) instead of the thesis's sweep in drawing order, which puts a copy in the
+  /// first representative within reach even when a copy of its own vertex comes later.
+  bool closestFirst = true;
   /// Beyond the thesis: only free ends (one segment at the coordinate) collapse; vertices where lines
   /// already meet exactly are kept apart, however close (20 % of the sample's edges are < 1 m).
   bool freeEndsOnly = true;

@@ -228,6 +228,14 @@ PlanarGraph structuredGraph(const Linework& lw, std::uint8_t layerMask, double g
   };
   std::vector<End> ends;
   std::vector<int> endOf(noded.nodeCount(), -1);
+  // Short spurs (a free end within the gap) at each node.
+  std::vector<int> shortSpurs(noded.nodeCount(), 0);
+  for (size_t ni = 0; ni < noded.nodeCount(); ++ni) {
+    const int n = static_cast<int>(ni);
+    if (noded.degree(n) != 1) continue;
+    const int e = noded.node(n).edges[0];
+    if (noded.edgeLength(e) <= gap) ++shortSpurs[static_cast<size_t>(noded.otherEnd(e, n))];
+  }
   for (size_t ni = 0; ni < noded.nodeCount(); ++ni) {
     const int n = static_cast<int>(ni);
     if (noded.degree(n) != 1) continue;
@@ -236,8 +244,11 @@ PlanarGraph structuredGraph(const Linework& lw, std::uint8_t layerMask, double g
     const LineString& line = noded.edge(e).line;
     const Vec2 p = noded.node(n).p;
     const Vec2 prev = noded.edge(e).a == n ? line[1] : line[line.size() - 2];
-    if (noded.degree(m) >= 3 && noded.edgeLength(e) <= gap) {
+    if (noded.degree(m) >= 3 && noded.edgeLength(e) <= gap &&
+        noded.degree(m) - shortSpurs[static_cast<size_t>(m)] >= 2) {
       // A short spur from a junction is an end that ran past it (an overshoot): fringe removal cuts it.
+      // Not when cutting every short spur there would leave the junction an end itself: then the
+      // spurs are a fork of jittered copies, one of them the line going on, and are joined below.
       ++stats.overshootsCut;
       continue;
     }
@@ -265,6 +276,9 @@ PlanarGraph structuredGraph(const Linework& lw, std::uint8_t layerMask, double g
       if (j <= i) return;
       const End& b = ends[j];
       if (a.edge == b.edge || distance(a.p, b.p) > gap) return;
+      // Two spurs from one node (a fork of jittered copies): their lines cross at that node, so
+      // "closing the corner" would shrink both to a point and cut the line they continue.
+      if (noded.otherEnd(a.edge, a.node) == noded.otherEnd(b.edge, b.node)) return;
       const double den = cross(a.d, b.d);
       if (std::abs(den) < 0.17) {                                // within ~10 degrees: parallel or opposite
         if (dot(a.d, b.d) < 0.0 && dot(b.p - a.p, a.d) > -1e-9)  // facing each other: a gap in one line
@@ -282,6 +296,7 @@ PlanarGraph structuredGraph(const Linework& lw, std::uint8_t layerMask, double g
     return x.cost != y.cost ? x.cost < y.cost : (x.i != y.i ? x.i < y.i : x.j < y.j);
   });
   std::vector<char> done(ends.size(), 0);
+
   std::vector<Vec2> moved(noded.nodeCount());
   std::vector<char> isMoved(noded.nodeCount(), 0);
   std::vector<LineString> bridges;
