@@ -453,6 +453,8 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
       "dangling ends extended onto a segment (also its middle)");
   row("undershoots_to_vertex", n(rep.undershootsToVertex), "dangling ends joined to the nearest vertex");
   row("overshoots_cut", n(rep.overshootsCut), "ends running past a crossing");
+  row("hooks_cut", n(rep.hooksCut),
+      "short last edges folding back on their line, the line ended at the fold");
   row("fringe_edges_removed", n(rep.fringeEdgesRemoved), "removed fringe paths (edges)");
   row("vertices_straightened", n(rep.verticesStraightened), "degree-2 vertices dropped on straight lines");
   row("slivers_dropped", n(rep.slivers), "circuits under -min-area");

@@ -22,6 +22,7 @@ void addGraphStats(CadastreReport& r, const GraphStats& g) {
   r.undershootsToSegment += g.undershootsToSegment;
   r.undershootsToVertex += g.undershootsToVertex;
   r.overshootsCut += g.overshootsCut;
+  r.hooksCut += g.hooksCut;
   r.fringeEdgesRemoved += g.fringeEdgesRemoved;
   r.verticesStraightened += g.verticesStraightened;
 }
