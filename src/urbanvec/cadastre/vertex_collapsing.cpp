@@ -5,6 +5,7 @@
 #include <cstring>
 #include <limits>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace urbanvec::cadastre {
 namespace {
@@ -79,8 +80,12 @@ std::vector<int> closestFirstClusters(const std::vector<Vec2>& coords,
                                       double threshold, std::size_t neighbours, CollapseStats& stats,
                                       const Progress& progress) {
   const double t2 = threshold * threshold;
-  CellGrid grid(threshold);
-  for (size_t i = 0; i < coords.size(); ++i) grid.insert(coords[i], static_cast<int>(i));
+  // Coordinates sorted by cell (row, column) of the threshold's size: a query scans three runs.
+  auto cellOf = [&](double v) { return static_cast<std::int64_t>(std::floor(v / threshold)); };
+  std::vector<std::pair<std::pair<std::int64_t, std::int64_t>, int>> cells(coords.size());
+  for (size_t i = 0; i < coords.size(); ++i)
+    cells[i] = {{cellOf(coords[i].y), cellOf(coords[i].x)}, static_cast<int>(i)};
+  std::sort(cells.begin(), cells.end());
   struct Pair {
     double d2;
     int x, y;
@@ -88,17 +93,28 @@ std::vector<int> closestFirstClusters(const std::vector<Vec2>& coords,
   std::vector<Pair> pairs;
   std::vector<Pair> near;
   ProgressTicker ticker(progress, "collapsing vertices", coords.size());
-  for (size_t xi = 0; xi < coords.size(); ++xi) {
+  // Points in cell order: the runs of the rows above, at and below (columns c - 1 .. c + 1) only move
+  // forward, so three cursors replace a search per point.
+  size_t cursor[3] = {0, 0, 0};
+  for (size_t k = 0; k < cells.size(); ++k) {
     ticker.tick();
-    const Vec2 p = coords[xi];
-    const int x = static_cast<int>(xi);
+    const int x = cells[k].second;
+    const Vec2 p = coords[static_cast<size_t>(x)];
+    const std::int64_t row0 = cells[k].first.first, col = cells[k].first.second;
     near.clear();
-    grid.query(p.x - threshold, p.y - threshold, p.x + threshold, p.y + threshold, [&](int y) {
-      if (y == x) return;
-      const Vec2 d = coords[static_cast<size_t>(y)] - p;
-      const double d2 = dot(d, d);
-      if (d2 < t2) near.push_back({d2, std::min(x, y), std::max(x, y)});
-    });
+    for (int r = 0; r < 3; ++r) {
+      const std::pair<std::int64_t, std::int64_t> from{row0 - 1 + r, col - 1};
+      size_t& i = cursor[r];
+      while (i < cells.size() && cells[i].first < from) ++i;
+      for (size_t j = i;
+           j < cells.size() && cells[j].first.first == from.first && cells[j].first.second <= col + 1; ++j) {
+        const int y = cells[j].second;
+        if (y == x) continue;
+        const Vec2 d = coords[static_cast<size_t>(y)] - p;
+        const double d2 = dot(d, d);
+        if (d2 < t2) near.push_back({d2, std::min(x, y), std::max(x, y)});
+      }
+    }
     // The nearest few only: a pile of coordinates on one spot stays linear.
     auto closer = [](const Pair& u, const Pair& v) {
       return u.d2 != v.d2 ? u.d2 < v.d2 : (u.x != v.x ? u.x < v.x : u.y < v.y);
@@ -108,7 +124,10 @@ std::vector<int> closestFirstClusters(const std::vector<Vec2>& coords,
                        closer);
       near.resize(neighbours);
     }
-    pairs.insert(pairs.end(), near.begin(), near.end());
+    // Each pair once (from its lower id), unless the list was cut to the nearest: then from both.
+    const bool cut = near.size() >= neighbours;
+    for (const Pair& q : near)
+      if (cut || (q.x == x ? q.y : q.x) > x) pairs.push_back(q);
   }
   ticker.finish();
   auto closer = [](const Pair& u, const Pair& v) {
@@ -123,9 +142,15 @@ std::vector<int> closestFirstClusters(const std::vector<Vec2>& coords,
   std::vector<char> allJoined(joinedVertex.begin(), joinedVertex.end());
   for (size_t i = 0; i < coords.size(); ++i)
     cluster[i] = static_cast<int>(i), members[i] = {static_cast<int>(i)};
+  // Vertices once refused stay refused: a merge only grows them, and every refusal (a segment between
+  // them, copies of one line, too wide) holds for any larger vertex.
+  std::unordered_set<std::uint64_t> refused;
+  auto refusal = [](int a, int b) {
+    return static_cast<std::uint64_t>(std::min(a, b)) << 32 | static_cast<std::uint32_t>(std::max(a, b));
+  };
   for (const Pair& q : pairs) {
     int cx = cluster[static_cast<size_t>(q.x)], cy = cluster[static_cast<size_t>(q.y)];
-    if (cx == cy) continue;
+    if (cx == cy || refused.count(refusal(cx, cy))) continue;
     if (freeEndsOnly && allJoined[static_cast<size_t>(cx)] && allJoined[static_cast<size_t>(cy)]) continue;
     if (members[static_cast<size_t>(cx)].size() < members[static_cast<size_t>(cy)].size()) std::swap(cx, cy);
     auto& big = members[static_cast<size_t>(cx)];
@@ -137,7 +162,10 @@ std::vector<int> closestFirstClusters(const std::vector<Vec2>& coords,
         if (cluster[static_cast<size_t>(a)] == cx) linked = true;
       if (linked) break;
     }
-    if (linked) continue;
+    if (linked) {
+      refused.insert(refusal(cx, cy));
+      continue;
+    }
     for (int m : small) {
       for (int n : big)
         if (oppositeEndsOfCopies(coords, adjacent, m, n)) {
@@ -146,7 +174,10 @@ std::vector<int> closestFirstClusters(const std::vector<Vec2>& coords,
         }
       if (linked) break;
     }
-    if (linked) continue;
+    if (linked) {
+      refused.insert(refusal(cx, cy));
+      continue;
+    }
     // Anti-drift: no two coordinates of the merged vertex farther apart than the threshold.
     bool wide = false;
     for (int m : small) {
@@ -160,6 +191,7 @@ std::vector<int> closestFirstClusters(const std::vector<Vec2>& coords,
     }
     if (wide) {
       ++stats.reverted;
+      refused.insert(refusal(cx, cy));
       continue;
     }
     for (int m : small) cluster[static_cast<size_t>(m)] = cx;
