@@ -86,7 +86,7 @@ app::CommandSpec spec() {
   o.push_back(
       option("-thesis-revert", ValueType::Flag, "",
              "On a failed collapse, revert it as the thesis does (split off the farthest vertex) instead of "
-             "keeping the new vertex apart.")
+             "keeping the new vertex apart; implies -drawing-order.")
           .isAdvanced());
   o.push_back(option("-collapse-all", ValueType::Flag, "",
                      "Collapse every vertex as the thesis does, also two where lines already meet exactly "
@@ -232,7 +232,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
                         "; the Collapsing Threshold must not exceed the Block Threshold");
   options.thesisRevert = args.flag("-thesis-revert");
   options.freeEndsOnly = !args.flag("-collapse-all");
-  options.closestFirst = !args.flag("-drawing-order");
+  options.closestFirst = !args.flag("-drawing-order") && !options.thesisRevert;
   options.straightenShare = args.real("-straighten");
   options.minFaceArea = args.real("-min-area");
   options.labelSearchDistance = args.real("-label-distance");

@@ -59,6 +59,7 @@ struct CadastreOptions {
   /// §A.4 anti-drift rule on failure: true reverts the collapse as the thesis does (the farthest
   /// original is split off); false (measured better: a reverted cluster leaves slivers) keeps the new
   /// vertex apart and the representative whole. Either way no cluster grows wider than the threshold.
+  /// Applies to the drawing-order sweep only (closestFirst false): closest-first never reverts.
   bool thesisRevert = false;
   /// Beyond the thesis: collapse the closest pairs of coordinates first (agglomerative, independent
   /// of the drawing order) instead of the thesis's sweep in drawing order, which puts a copy in the
