@@ -331,7 +331,6 @@ PlanarGraph structuredGraph(const Linework& lw, std::uint8_t layerMask, double g
     return x.cost != y.cost ? x.cost < y.cost : (x.i != y.i ? x.i < y.i : x.j < y.j);
   });
   std::vector<char> done(ends.size(), 0);
-
   std::vector<Vec2> moved(noded.nodeCount());
   std::vector<char> isMoved(noded.nodeCount(), 0);
   std::vector<LineString> bridges;

@@ -72,8 +72,8 @@ bool oppositeEndsOfCopies(const std::vector<Vec2>& coords, const std::vector<std
   return false;
 }
 
-/// Closest pairs first (see collapseVertices): returns the cluster of every coordinate, clusters
-/// numbered by their lowest coordinate id.
+/// Closest pairs first (see collapseVertices): returns, for every coordinate, the id of one coordinate
+/// of its cluster (the same for the whole cluster; the caller numbers the clusters).
 std::vector<int> closestFirstClusters(const std::vector<Vec2>& coords,
                                       const std::vector<std::vector<int>>& adjacent,
                                       const std::vector<char>& joinedVertex, bool freeEndsOnly,
