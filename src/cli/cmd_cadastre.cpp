@@ -86,11 +86,15 @@ app::CommandSpec spec() {
   o.push_back(
       option("-thesis-revert", ValueType::Flag, "",
              "On a failed collapse, revert it as the thesis does (split off the farthest vertex) instead of "
-             "keeping the new vertex apart.")
+             "keeping the new vertex apart; implies -drawing-order.")
           .isAdvanced());
   o.push_back(option("-collapse-all", ValueType::Flag, "",
                      "Collapse every vertex as the thesis does, also two where lines already meet exactly "
                      "(default: only free ends collapse).")
+                  .isAdvanced());
+  o.push_back(option("-drawing-order", ValueType::Flag, "",
+                     "Collapse vertices in drawing order as the thesis does (default: closest pairs first, "
+                     "whatever the order of the drawing).")
                   .isAdvanced());
   o.push_back(
       option("-straighten", ValueType::Real, "<share>",
@@ -228,6 +232,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
                         "; the Collapsing Threshold must not exceed the Block Threshold");
   options.thesisRevert = args.flag("-thesis-revert");
   options.freeEndsOnly = !args.flag("-collapse-all");
+  options.closestFirst = !args.flag("-drawing-order") && !options.thesisRevert;
   options.straightenShare = args.real("-straighten");
   options.minFaceArea = args.real("-min-area");
   options.labelSearchDistance = args.real("-label-distance");
@@ -448,6 +453,8 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
       "dangling ends extended onto a segment (also its middle)");
   row("undershoots_to_vertex", n(rep.undershootsToVertex), "dangling ends joined to the nearest vertex");
   row("overshoots_cut", n(rep.overshootsCut), "ends running past a crossing");
+  row("hooks_cut", n(rep.hooksCut),
+      "short last edges folding back on their line, the line ended at the fold");
   row("fringe_edges_removed", n(rep.fringeEdgesRemoved), "removed fringe paths (edges)");
   row("vertices_straightened", n(rep.verticesStraightened), "degree-2 vertices dropped on straight lines");
   row("slivers_dropped", n(rep.slivers), "circuits under -min-area");

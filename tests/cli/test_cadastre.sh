@@ -77,14 +77,17 @@ cmp -s "$WORK/l0.obj" "$WORK/l0b.obj" || fail "OBJ differs between runs"
 cmp -s "$WORK/l0.city.json" "$WORK/l0b.city.json" || fail "CityJSON differs between runs"
 
 # L2 (jitter per copy <= 0.3 m, 15 % over/undershoots): bands around the measured values
-# (blocks 1.0 / 0.917, parcels 0.962 / 0.943, building parts 0.692 / 0.737, heights 1.0).
+# (blocks 1.0 / 1.0, parcels 1.0 / 1.0, building parts 0.769 / 0.807, heights 1.0). The building-part
+# bands fail on the drawing-order collapsing at 1 m of before (0.692 / 0.737).
 run_cmd cadastre -q "${LAYERS[@]}" -a_srs EPSG:32628 "$WORK/L2.dxf" "$WORK/l2.gpkg"
 expect_status 0
 "$PY" "$SCORE" "$WORK/l2.gpkg" "$WORK/L2_truth.gpkg" --json > "$WORK/l2.json"
 in_band "$(score_field "$WORK/l2.json" "['blocks']['recall']")" 0.9 1.0 "L2 blocks recall"
 in_band "$(score_field "$WORK/l2.json" "['parcels']['recall']")" 0.92 1.0 "L2 parcels recall"
 in_band "$(score_field "$WORK/l2.json" "['parcels']['precision']")" 0.9 1.0 "L2 parcels precision"
-in_band "$(score_field "$WORK/l2.json" "['buildings']['recall']")" 0.64 0.8 "L2 building parts recall"
+in_band "$(score_field "$WORK/l2.json" "['blocks']['precision']")" 0.9 1.0 "L2 blocks precision"
+in_band "$(score_field "$WORK/l2.json" "['buildings']['recall']")" 0.73 0.9 "L2 building parts recall"
+in_band "$(score_field "$WORK/l2.json" "['buildings']['precision']")" 0.77 1.0 "L2 building parts precision"
 in_band "$(score_field "$WORK/l2.json" "['heights_exact_matched']")" 0.95 1.0 "L2 exact heights"
 
 # Bad input: nothing written, one ERROR line.

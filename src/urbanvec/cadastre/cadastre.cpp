@@ -22,6 +22,7 @@ void addGraphStats(CadastreReport& r, const GraphStats& g) {
   r.undershootsToSegment += g.undershootsToSegment;
   r.undershootsToVertex += g.undershootsToVertex;
   r.overshootsCut += g.overshootsCut;
+  r.hooksCut += g.hooksCut;
   r.fringeEdgesRemoved += g.fringeEdgesRemoved;
   r.verticesStraightened += g.verticesStraightened;
 }
@@ -56,7 +57,7 @@ CadastreResult structureCadastre(const std::vector<CadLine>& lines, const std::v
   // §A.4 vertex cleaning, §A.5 segment cleaning.
   CollapseStats cs;
   Linework lw = collapseVertices(lines, o.collapsingThreshold, cs, subProgress(progress, 0.0, 0.15),
-                                 o.thesisRevert, o.freeEndsOnly);
+                                 o.thesisRevert, o.freeEndsOnly, o.closestFirst);
   rep.inputVertices = cs.inputVertices;
   rep.outputVertices = cs.outputVertices;
   rep.collapsedShare = cs.collapsedShare();
@@ -76,7 +77,7 @@ CadastreResult structureCadastre(const std::vector<CadLine>& lines, const std::v
   int preBlockCount = 0;
   const std::vector<int> preBlockOf = preBlocks(blockGraph, o.blockThreshold, &preBlockCount);
   rep.preBlocks = static_cast<std::size_t>(preBlockCount);
-  const Circuits bc = findCircuits(blockGraph, o.minFaceArea, o.sliverWidthShare * o.collapsingThreshold);
+  const Circuits bc = findCircuits(blockGraph, o.minFaceArea, o.sliverWidth);
   rep.slivers += bc.slivers;
   // Components at even depth are blocks, at odd depth courtyards of the block around them.
   std::vector<int> blockOfComponent(bc.outlines.size(), -1);
@@ -196,7 +197,7 @@ CadastreResult structureCadastre(const std::vector<CadLine>& lines, const std::v
     GraphStats pg;
     const PlanarGraph g =
         structuredGraph(lw, kBlockLayer | kLotLayer, o.blockThreshold, pg, parcelProgress, tolerance);
-    const Circuits pc = findCircuits(g, o.minFaceArea, o.sliverWidthShare * o.collapsingThreshold);
+    const Circuits pc = findCircuits(g, o.minFaceArea, o.sliverWidth);
     std::size_t outside = 0;
     for (Localised& l : localise(pc.faces, locator, o.minFaceArea, outside))
       result.parcels.push_back({std::move(l.shape), l.block});
@@ -235,7 +236,7 @@ CadastreResult structureCadastre(const std::vector<CadLine>& lines, const std::v
   std::vector<Localised> outsideFaces;
   std::vector<Localised> elements;
   try {
-    ec = findCircuits(g, o.minFaceArea, o.sliverWidthShare * o.collapsingThreshold);
+    ec = findCircuits(g, o.minFaceArea, o.sliverWidth);
     elements = localise(ec.faces, locator, o.minFaceArea, rep.facesOutsideBlocks, &outsideFaces);
   } catch (...) {
     joinParcels();

@@ -37,7 +37,7 @@ struct CadastreReport {
   std::size_t revertedCollapses = 0, zeroLengthSegments = 0;
   std::size_t duplicateSegments = 0, verticesOnSegments = 0;
   std::size_t cornersClosed = 0, undershootsToSegment = 0, undershootsToVertex = 0, overshootsCut = 0,
-              fringeEdgesRemoved = 0, verticesStraightened = 0;
+              hooksCut = 0, fringeEdgesRemoved = 0, verticesStraightened = 0;
   std::size_t preBlocks = 0, blocks = 0, subBlocks = 0, courtyards = 0, parcels = 0, buildings = 0;
   std::size_t buildingsWithFloors = 0;
   std::size_t slivers = 0, facesOutsideBlocks = 0, buildingsOutsideBlocks = 0, enclosedBlocks = 0;

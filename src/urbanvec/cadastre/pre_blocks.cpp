@@ -225,9 +225,37 @@ PlanarGraph structuredGraph(const Linework& lw, std::uint8_t layerMask, double g
     int edge;
     Vec2 p;
     Vec2 d;
+    int hook = -1;  ///< the folded-back edge beyond the end, if any (ignored when joining it)
   };
   std::vector<End> ends;
   std::vector<int> endOf(noded.nodeCount(), -1);
+  // Short spurs (a free end within the gap) at each node.
+  std::vector<int> shortSpurs(noded.nodeCount(), 0);
+  for (size_t ni = 0; ni < noded.nodeCount(); ++ni) {
+    const int n = static_cast<int>(ni);
+    if (noded.degree(n) != 1) continue;
+    const int e = noded.node(n).edges[0];
+    if (noded.edgeLength(e) <= gap) ++shortSpurs[static_cast<size_t>(noded.otherEnd(e, n))];
+  }
+  // Whether the lines at a junction, its short spurs aside, cross there: two of them leave it in
+  // directions apart by more than kCrossingAngle. A spur from a junction where only one doubled line
+  // arrives (two copies of one line meeting) is that line going on, not an overshoot.
+  auto crossedAt = [&](int m) {
+    constexpr double kCrossingAngle = 0.35;  // radians, about 20 degrees
+    std::vector<Vec2> dirs;
+    for (int f : noded.node(m).edges) {
+      const int o = noded.otherEnd(f, m);
+      if (noded.degree(o) == 1 && noded.edgeLength(f) <= gap) continue;
+      const LineString& l = noded.edge(f).line;
+      const Vec2 q = noded.edge(f).a == m ? l[1] : l[l.size() - 2];
+      const double len = distance(q, noded.node(m).p);
+      if (len > 0) dirs.push_back((q - noded.node(m).p) / len);
+    }
+    for (size_t i = 0; i < dirs.size(); ++i)
+      for (size_t j = i + 1; j < dirs.size(); ++j)
+        if (std::acos(std::clamp(dot(dirs[i], dirs[j]), -1.0, 1.0)) > kCrossingAngle) return true;
+    return false;
+  };
   for (size_t ni = 0; ni < noded.nodeCount(); ++ni) {
     const int n = static_cast<int>(ni);
     if (noded.degree(n) != 1) continue;
@@ -236,10 +264,28 @@ PlanarGraph structuredGraph(const Linework& lw, std::uint8_t layerMask, double g
     const LineString& line = noded.edge(e).line;
     const Vec2 p = noded.node(n).p;
     const Vec2 prev = noded.edge(e).a == n ? line[1] : line[line.size() - 2];
-    if (noded.degree(m) >= 3 && noded.edgeLength(e) <= gap) {
+    if (noded.degree(m) >= 3 && noded.edgeLength(e) <= gap &&
+        noded.degree(m) - shortSpurs[static_cast<size_t>(m)] >= 2 && crossedAt(m)) {
       // A short spur from a junction is an end that ran past it (an overshoot): fringe removal cuts it.
+      // Not when cutting every short spur there would leave the junction an end itself: then the
+      // spurs are a fork of jittered copies, one of them the line going on, and are joined below.
       ++stats.overshootsCut;
       continue;
+    }
+    if (noded.degree(m) == 2 && noded.edgeLength(e) <= gap) {
+      // A short last edge folding back on its line (a hook: a copy's end merged with the wrong
+      // vertex) hides where the line was going: the line ends at the fold, in its own direction.
+      const int e2 = noded.node(m).edges[0] == e ? noded.node(m).edges[1] : noded.node(m).edges[0];
+      const LineString& l2 = noded.edge(e2).line;
+      const Vec2 mp = noded.node(m).p;
+      const Vec2 before = noded.edge(e2).a == m ? l2[1] : l2[l2.size() - 2];
+      const double fl = distance(mp, before);
+      if (e2 != e && fl > 0 && dot(p - mp, mp - before) < 0.0) {
+        ++stats.hooksCut;
+        endOf[static_cast<size_t>(m)] = static_cast<int>(ends.size());
+        ends.push_back({m, e2, mp, (mp - before) / fl, e});
+        continue;
+      }
     }
     const double len = distance(p, prev);
     if (len <= 0) continue;
@@ -265,6 +311,9 @@ PlanarGraph structuredGraph(const Linework& lw, std::uint8_t layerMask, double g
       if (j <= i) return;
       const End& b = ends[j];
       if (a.edge == b.edge || distance(a.p, b.p) > gap) return;
+      // Two spurs from one node (a fork of jittered copies): their lines cross at that node, so
+      // "closing the corner" would shrink both to a point and cut the line they continue.
+      if (noded.otherEnd(a.edge, a.node) == noded.otherEnd(b.edge, b.node)) return;
       const double den = cross(a.d, b.d);
       if (std::abs(den) < 0.17) {                                // within ~10 degrees: parallel or opposite
         if (dot(a.d, b.d) < 0.0 && dot(b.p - a.p, a.d) > -1e-9)  // facing each other: a gap in one line
@@ -306,7 +355,7 @@ PlanarGraph structuredGraph(const Linework& lw, std::uint8_t layerMask, double g
     const Vec2 p = a.p;
     double best = std::numeric_limits<double>::infinity();
     edgeGrid.query(p.x - gap, p.y - gap, p.x + gap, p.y + gap, [&](int f) {
-      if (f == a.edge) return;
+      if (f == a.edge || f == a.hook) return;
       const LineString& l = noded.edge(f).line;
       for (size_t k = 1; k < l.size(); ++k) best = std::min(best, rayHit(p, a.d, l[k - 1], l[k]));
     });
@@ -319,7 +368,7 @@ PlanarGraph structuredGraph(const Linework& lw, std::uint8_t layerMask, double g
     int nearest = -1;
     double nd = gap;
     nodeGrid.query(p.x - gap, p.y - gap, p.x + gap, p.y + gap, [&](int w) {
-      if (w == a.node || w == m) return;
+      if (w == a.node || w == m || (a.hook >= 0 && w == noded.otherEnd(a.hook, a.node))) return;
       const double dd = distance(p, noded.node(w).p);
       if (dd < nd || (dd == nd && nearest >= 0 && w < nearest)) nd = dd, nearest = w;
     });

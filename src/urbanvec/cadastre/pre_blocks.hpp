@@ -16,9 +16,9 @@ struct GraphStats {
   std::size_t undershootsToSegment = 0;  ///< dangling ends extended onto a segment (new T-vertex)
   std::size_t undershootsToVertex = 0;   ///< dangling ends joined to the nearest vertex
   std::size_t overshootsCut = 0;         ///< ends running past a crossing, cut there
-  std::size_t fringeEdgesRemoved = 0;
-  std::size_t verticesStraightened = 0;  ///< degree-2 vertices dropped on straight chains    ///< edges of
-                                         ///< fringe paths removed (no circuit through them)
+  std::size_t fringeEdgesRemoved = 0;    ///< edges of fringe paths removed (no circuit through them)
+  std::size_t verticesStraightened = 0;  ///< degree-2 vertices dropped on straight chains
+  std::size_t hooksCut = 0;              ///< short last edges folding back, the line ended at the fold
 };
 
 /// The planar graph of the segments whose layers meet `layerMask`: lines are noded where they cross

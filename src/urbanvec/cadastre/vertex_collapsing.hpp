@@ -32,7 +32,13 @@ struct CollapseStats {
 /// the new vertex apart and leaves the representative whole (the default, see CadastreOptions). With
 /// `freeEndsOnly`, two vertices where lines already meet exactly never collapse together: only a free
 /// end (one segment) joins another vertex, so a clean drawing keeps every vertex however close.
+/// With `closestFirst` (beyond the thesis) the order of the drawing no longer matters: the pairs of
+/// coordinates closer than `threshold` (each coordinate's 24 nearest) are taken closest first, and two
+/// vertices merge unless a segment joins them, both are sound (`freeEndsOnly`), or two of their
+/// coordinates would end up `threshold` or more apart (the anti-drift rule; counted as reverted).
+/// The representative is the mean of its coordinates.
 Linework collapseVertices(const std::vector<CadLine>& lines, double threshold, CollapseStats& stats,
-                          const Progress& progress = {}, bool revert = true, bool freeEndsOnly = false);
+                          const Progress& progress = {}, bool revert = true, bool freeEndsOnly = false,
+                          bool closestFirst = false);
 
 }  // namespace urbanvec::cadastre

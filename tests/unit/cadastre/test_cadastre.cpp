@@ -56,6 +56,37 @@ TEST(VertexCollapsing, SoundVerticesStayApartButFreeEndsJoin) {
   EXPECT_EQ(lw.segments.size(), 5u);
 }
 
+TEST(VertexCollapsing, ClosestFirstJoinsEveryCopyWhateverTheDrawingOrder) {
+  // A 3 x 1.2 m building drawn as four sides, each twice, every end moved on its own by up to 0.25 m:
+  // copies of two corners of a short side can be within the threshold (0.75 m) of each other, but a
+  // corner's own copies are closer; each corner must become the mean of its four copies, in any order.
+  const Vec2 corner[4] = {{0, 0}, {3, 0}, {3, 1.2}, {0, 1.2}};
+  const Vec2 jitter[16] = {{0.2, 0.1},   {-0.1, 0.2},  {0.15, -0.15}, {-0.2, -0.1}, {0.1, 0.2},  {0.2, -0.05},
+                           {-0.15, 0.1}, {0.05, -0.2}, {-0.2, 0.15},  {0.1, -0.1},  {0.2, 0.05}, {-0.05, 0.2},
+                           {0.15, 0.15}, {-0.1, -0.2}, {0.05, 0.1},   {-0.2, 0.05}};
+  std::vector<CadLine> lines;
+  for (int copy = 0; copy < 2; ++copy)
+    for (int side = 0; side < 4; ++side) {
+      const int j = 8 * copy + 2 * side;
+      lines.push_back({{corner[side] + jitter[j], corner[(side + 1) % 4] + jitter[j + 1]}, kBuildingLayer});
+    }
+  std::vector<CadLine> reversed(lines.rbegin(), lines.rend());
+  for (const auto* drawing : {&lines, &reversed}) {
+    CollapseStats stats;
+    const Linework lw = collapseVertices(*drawing, 0.75, stats, {}, false, true, true);
+    ASSERT_EQ(lw.vertices.size(), 4u);  // one vertex per corner
+    for (int k = 0; k < 4; ++k) {
+      // At the mean of the corner's four copies: starts of side k, ends of side k - 1, both drawings.
+      Vec2 mean;
+      for (int copy = 0; copy < 2; ++copy)
+        mean += (jitter[8 * copy + 2 * k] + jitter[8 * copy + 2 * ((k + 3) % 4) + 1]) / 4.0;
+      double nearest = 1e9;
+      for (const Vec2& v : lw.vertices) nearest = std::min(nearest, distance(v, corner[k] + mean));
+      EXPECT_LT(nearest, 1e-9);
+    }
+  }
+}
+
 TEST(SegmentCleaning, TracedTwiceGivesOneCopyAndPartialOverlapsSplit) {
   Linework lw;
   lw.vertices = {{0, 0}, {10, 0}, {3, 0.05}, {7, -0.05}};
