@@ -15,8 +15,9 @@ tile runs:
    read by every tile with `vectorize -open-regions` through its window; and every enclosed region
    keeps its bounding box, so a tile reads at least the whole of each enclosed region its core meets.
 
-Memory: the side labels (4 T per tile) and one bounding box per label; time: each core is read and
-labelled twice (once per pass)."""
+Memory on the client: the side labels (4 T per tile) and one bounding box per label (at 100,000²
+cells with tiles of 1024 and ~10^7 regions: about 0.3 GB each); time: each core is read and labelled
+twice (once per pass), 5 s for 4096² here."""
 import numpy as np
 from osgeo import gdal
 from scipy import ndimage
@@ -56,14 +57,15 @@ def compute(landuse, classes, tiles, tile_cells, frame, path, progress=None):
         labels, n = _label(landuse, classes, t.core)
         c0, r0, c1, r1 = t.core
         offsets[t.name] = n_total
-        g = np.where(labels > 0, labels - 1 + n_total, -1)
+        g = np.where(labels > 0, labels - 1 + n_total, -1).astype(np.int64)
         sides[(t.row, t.col)] = (g[:, 0].copy(), g[:, -1].copy(), g[0, :].copy(), g[-1, :].copy())
         for on_edge, line in ((c0 == 0, g[:, 0]), (c1 == frame.width, g[:, -1]),
                               (r0 == 0, g[0, :]), (r1 == frame.height, g[-1, :])):
             if on_edge:
                 border.append(line[line >= 0])
-        for s in ndimage.find_objects(labels):
-            boxes.append((c0 + s[1].start, r0 + s[0].start, c0 + s[1].stop, r0 + s[0].stop))
+        objs = ndimage.find_objects(labels)
+        boxes.append(np.array([(c0 + s[1].start, r0 + s[0].start, c0 + s[1].stop, r0 + s[0].stop) for s in objs],
+                              dtype=np.int32).reshape(-1, 4))
         n_total += n
         if progress:
             progress(0.05 * (k + 1) / len(tiles), "regions")
@@ -85,7 +87,7 @@ def compute(landuse, classes, tiles, tile_cells, frame, path, progress=None):
     comp_open = np.zeros(n_comp, dtype=bool)
     if border:
         comp_open[component[np.concatenate(border)]] = True
-    box = np.array(boxes, dtype=np.int64).reshape(-1, 4)
+    box = np.concatenate(boxes).astype(np.int64) if boxes else np.zeros((0, 4), dtype=np.int64)
     comp_box = np.empty((n_comp, 4), dtype=np.int64)
     comp_box[:, 0:2] = np.iinfo(np.int64).max
     comp_box[:, 2:4] = np.iinfo(np.int64).min
