@@ -66,6 +66,14 @@ app::CommandSpec spec() {
                      "a run on the whole grid (urbanvec-tiles, docs/scale.md).")
                   .values(4)
                   .isAdvanced());
+  o.push_back(option("-open-regions", ValueType::String, "<raster>",
+                     "Byte raster on the same grid: 1 where the cell's road-bounded region (4-connected "
+                     "non-road cells) reaches the edge of the whole grid, 0 where roads enclose it. Stage A2 "
+                     "then takes a region's open or enclosed status from it, not from the window's edge, so "
+                     "a -srcwin window classes the regions it cuts as the whole grid does (urbanvec-tiles "
+                     "writes it, docs/scale.md).")
+                  .withRole(Role::InputRaster)
+                  .isAdvanced());
   o.push_back(app::seedOption());
   o.push_back(option("-tries", ValueType::Integer, "<n>",
                      "Generate-and-test iterations per block; the lowest-cost parcelling is kept (E5).")
@@ -342,6 +350,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   if (args.given("-parcels")) paths.parcels = args.str("-parcels");
   if (args.given("-parcel-table")) paths.parcelTable = args.str("-parcel-table");
   if (args.given("-classes")) paths.classes = args.str("-classes");
+  if (args.given("-open-regions")) paths.openRegions = args.str("-open-regions");
   if (args.given("-srcwin")) {
     const std::vector<std::string> w = args.values("-srcwin");
     int v[4];

@@ -15,6 +15,7 @@ from osgeo import gdal
 from urbanvec_tiles import digest as D
 from urbanvec_tiles import geom as G
 from urbanvec_tiles import plan as P
+from urbanvec_tiles import regions as R
 from urbanvec_tiles import stitch as S
 from urbanvec_tiles import tile as T
 
@@ -45,7 +46,8 @@ largest coordinate difference (exit 1 when they differ by more than 1e-6 m).
 DRIVER_OPTS = {"--local": 1, "--scheduler": 1, "--sequential": 0, "-tile": 1, "-halo": 1, "-max-halo": 1,
                "--workdir": 1, "--keep-tiles": 0, "--retries": 1, "--connect-timeout": 1,
                "-overwrite": 0, "-q": 0, "-progress": 1, "--urbanvec": 1}
-REFUSED = {"-srcwin": "the driver sets each tile's window", "-of": "the stitched output is a GeoPackage",
+REFUSED = {"-srcwin": "the driver sets each tile's window",
+           "-open-regions": "the driver computes it for the whole grid", "-of": "the stitched output is a GeoPackage",
            "-lco": "not supported by the stitcher", "-dsco": "not supported by the stitcher",
            "-debug-stages": "use it on a single run", "-timings": "use it on a single run"}
 
@@ -215,12 +217,19 @@ def run(argv):
     os.makedirs(workdir, exist_ok=True)
     tmp = os.path.join(outdir, ".%s.tmp-%d.gpkg" % (base[:-5], os.getpid()))
     roads_only = "-roads-only" in vargs
-    jobs = [{"tile": t, "frame": frame, "halo": halo, "max_halo": max_halo, "workdir": workdir,
-             "urbanvec": urbanvec, "vargs": vargs, "landuse": landuse, "roads_only": roads_only,
-             "keep_tiles": bool(opts.get("--keep-tiles")),
-             "classes": vargs[vargs.index("-classes") + 1] if "-classes" in vargs else None} for t in tiles]
+    classes = vargs[vargs.index("-classes") + 1] if "-classes" in vargs else None
     started = time.time()
     try:
+        # The whole grid's road-bounded regions (regions.py): which are open land, and the extent of
+        # each enclosed one, so a tile classes the regions it cuts as a single run does and reads
+        # every enclosed region its core meets whole.
+        open_path = os.path.join(workdir, "open_regions.tif")
+        regions = R.compute(landuse, classes, tiles, tile_cells, frame, open_path, progress)
+        tile_vargs = vargs + ["-open-regions", open_path]
+        jobs = [{"tile": t, "frame": frame, "halo": halo, "max_halo": max_halo, "workdir": workdir,
+                 "urbanvec": urbanvec, "vargs": tile_vargs, "landuse": landuse, "roads_only": roads_only,
+                 "keep_tiles": bool(opts.get("--keep-tiles")), "classes": classes,
+                 "open_regions": open_path, "boxes": regions.enclosed_boxes(t)} for t in tiles]
         results = execute(jobs, modes[0] if modes else "--local", opts, retries, timeout, progress)
         parts = []
         for r in results:
@@ -258,12 +267,12 @@ def styles_of(jobs, results):
 
 def execute(jobs, mode, opts, retries, timeout, progress):
     n = len(jobs)
-    progress(0.0, "tiles")
+    progress(0.1, "tiles")  # 0..0.1: the regions pass (regions.py)
     if mode == "--sequential":
         out = []
         for k, job in enumerate(jobs):
             out.append(T.run_tile(job))
-            progress(0.95 * (k + 1) / n, "tiles")
+            progress(0.1 + 0.85 * (k + 1) / n, "tiles")
         return out
     import logging
 
@@ -295,7 +304,7 @@ def execute(jobs, mode, opts, retries, timeout, progress):
             except Exception as e:  # a task that failed on every try, or a lost worker
                 raise Failure("tile task %s failed: %s" % (fut.key, e))
             done[r["tile"]] = r
-            progress(0.95 * k / n, "tiles")
+            progress(0.1 + 0.85 * k / n, "tiles")
         client.close()
         return [done[j["tile"].name] for j in jobs]
     finally:

@@ -171,21 +171,25 @@ def compare(a, b, tol=1e-6):
             ok &= same
             continue
         # Match by attribute text and nearest representative point (within 1 cm).
+        # Candidates bucketed by attributes and a 5 cm cell of their point (linear, not quadratic, in
+        # the features of a layer); a point within 2 cm lies in one of the 3 x 3 cells around.
         pool = {}
         for r in rb:
-            pool.setdefault(r[0][1], []).append(r)
+            pool.setdefault((r[0][1], math.floor(r[0][2] / 0.05), math.floor(r[0][3] / 0.05)), []).append(r)
         worst, unmatched = 0.0, 0
         for r in ra:
-            cands = pool.get(r[0][1], [])
-            best, bd = None, None
-            for c in cands:
-                d = math.hypot(c[0][2] - r[0][2], c[0][3] - r[0][3])
-                if d <= 0.02 and (bd is None or d < bd):
-                    best, bd = c, d
+            best, bd, home = None, None, None
+            cx, cy = math.floor(r[0][2] / 0.05), math.floor(r[0][3] / 0.05)
+            for i in (cx - 1, cx, cx + 1):
+                for j in (cy - 1, cy, cy + 1):
+                    for c in pool.get((r[0][1], i, j), []):
+                        d = math.hypot(c[0][2] - r[0][2], c[0][3] - r[0][3])
+                        if d <= 0.02 and (bd is None or d < bd):
+                            best, bd, home = c, d, (r[0][1], i, j)
             if best is None:
                 unmatched += 1
                 continue
-            cands.remove(best)
+            pool[home].remove(best)
             pa, pb = _flat(r[2]), _flat(best[2])
             if len(pa) != len(pb):
                 worst = max(worst, math.inf)

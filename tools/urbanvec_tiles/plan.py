@@ -17,9 +17,12 @@ class Tile:
     def name(self):
         return "r%03d_c%03d" % (self.row, self.col)
 
-    def window(self, halo):
-        """gdal_translate -srcwin of the core plus `halo` cells, clipped to the grid."""
+    def window(self, halo, boxes=()):
+        """gdal_translate -srcwin of the core plus `halo` cells, clipped to the grid; with `boxes`
+        (c0, r0, c1, r1: the enclosed regions the core meets, regions.py), also each box plus `halo`."""
         c0, r0, c1, r1 = self.core
+        for b in boxes:
+            c0, r0, c1, r1 = min(c0, b[0]), min(r0, b[1]), max(c1, b[2]), max(r1, b[3])
         w, h = self.grid
         x0, y0 = max(0, c0 - halo), max(0, r0 - halo)
         x1, y1 = min(w, c1 + halo), min(h, r1 + halo)

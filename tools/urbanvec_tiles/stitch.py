@@ -3,8 +3,8 @@ a temporary name beside the output and renamed when complete (docs/scale.md "Sti
 - roads: pieces cut at core edges are joined at their seam end points into continuous lines (a
   computed crossing point is dropped again, so a merged line has exactly its single-run vertices);
   from_node / to_node point at the road_nodes at the line's ends;
-- pavement, water: pieces clipped at core edges that share a stretch of seam are unioned, and the
-  vertices the clip added on the seam are removed;
+- pavement, water: pieces clipped at core edges whose cuts (boundary stretches the clip made) share a
+  stretch of seam are unioned, and the vertices the clip added on the seam are removed;
 - ids are renumbered in a deterministic order (by representative point); block_id links follow."""
 import math
 import os
@@ -138,10 +138,13 @@ def _shared(inter):
 
 
 def merge_polygons(pieces, frame, seams_x, seams_u, id_field):
-    """pieces: (world polygon, attrs, tile). Unions pieces of different tiles with the same attributes
-    (apart from the id) that share a stretch of seam; returns [(world polygon, attrs)]."""
+    """pieces: (world polygon, attrs, tile, cut lines). Unions pieces of different tiles with the same
+    attributes (apart from the id) whose cuts (the boundary stretches the clip made on a seam) share a
+    stretch: the pieces of one feature, never two features that touch along a seam. Returns
+    [(world polygon, attrs)]."""
     s = frame.s
-    geoms = [G.to_u(p, s) for p, _, _ in pieces]
+    geoms = [G.to_u(p, s) for p, _, _, _ in pieces]
+    cuts = [c for _, _, _, c in pieces]
     parent = list(range(len(pieces)))
 
     def find(i):
@@ -157,7 +160,7 @@ def merge_polygons(pieces, frame, seams_x, seams_u, id_field):
         for bx in range(int(math.floor(minx / size)), int(math.floor(maxx / size)) + 1):
             for bu in range(int(math.floor(minu / size)), int(math.floor(maxu / size)) + 1):
                 bucket.setdefault((bx, bu), []).append(i)
-    keyattrs = [tuple((k, v) for k, v in sorted(a.items()) if k != id_field) for _, a, _ in pieces]
+    keyattrs = [tuple((k, v) for k, v in sorted(a.items()) if k != id_field) for _, a, _, _ in pieces]
     envs = [g.GetEnvelope() for g in geoms]
     seen = set()
     for members in bucket.values():
@@ -170,7 +173,7 @@ def merge_polygons(pieces, frame, seams_x, seams_u, id_field):
                 ea, eb = envs[a], envs[b]
                 if ea[1] < eb[0] - EPS or eb[1] < ea[0] - EPS or ea[3] < eb[2] - EPS or eb[3] < ea[2] - EPS:
                     continue
-                inter = geoms[a].Intersection(geoms[b])
+                inter = cuts[a].Intersection(cuts[b])
                 if inter is not None and _shared(inter):
                     parent[find(a)] = find(b)
     groups = {}
@@ -236,9 +239,12 @@ def stitch(parts, frame, tile_cells, layers, crs_wkt, styles, tmp_path):
         for name, idf in (("pavement", "pavement_id"), ("water", "water_id")):
             whole, cut = [], []
             for t, part in enumerate(parts):
-                for wkb, attrs, is_cut in part["layers"][name]:
+                for wkb, attrs, cut_wkb in part["layers"][name]:
                     g = ogr.CreateGeometryFromWkb(wkb)
-                    (cut if is_cut else whole).append((g, attrs, t))
+                    if cut_wkb is None:
+                        whole.append((g, attrs, t))
+                    else:
+                        cut.append((g, attrs, t, ogr.CreateGeometryFromWkb(cut_wkb)))
             merged = [(g, a) for g, a, _ in whole] + merge_polygons(cut, frame, seams_x, seams_u, idf)
             merged.sort(key=lambda r: (_rep(r[0]), str(r[1])))
             final[name] = [(g, dict(a, **{idf: n})) for n, (g, a) in enumerate(merged, start=1)]

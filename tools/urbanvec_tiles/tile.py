@@ -85,10 +85,19 @@ def road_mask(landuse, window, classes):
     return mask
 
 
-def open_regions(roads, window, frame):
+def open_mask(path, window):
+    """The window of the whole grid's open-regions raster (regions.py): True where the cell's region
+    reaches the grid's edge."""
+    ds = gdal.Open(path)  # kept alive while its band is read
+    return ds.GetRasterBand(1).ReadAsArray(*window) != 0
+
+
+def open_regions(roads, window, frame, globally_open=None):
     """Per cell of the window, whether its road-bounded region (4-connected non-road cells, as stage
-    A2 finds them) reaches a side of the window that is not the grid's edge: such a region is not the
-    region of the single run (it is cut, and A2 counts it as open), so nothing in it may be kept."""
+    A2 finds them) reaches a side of the window that is not the grid's edge and is enclosed in the
+    whole grid (`globally_open` False there; without it every cut region counts): the window cuts
+    such a region, which is not the single run's region, so nothing in it may be kept. A cut region
+    that reaches the grid's edge is open land in both runs (vectorize -open-regions)."""
     labels, _ = ndimage.label(~roads)
     x0, y0, xs, ys = window
     edge = set()
@@ -101,7 +110,8 @@ def open_regions(roads, window, frame):
     if y0 + ys < frame.height:
         edge |= set(np.unique(labels[-1, :]))
     edge.discard(0)
-    return np.isin(labels, sorted(edge)) if edge else np.zeros(labels.shape, dtype=bool)
+    cut = np.isin(labels, sorted(edge)) if edge else np.zeros(labels.shape, dtype=bool)
+    return cut if globally_open is None else cut & ~globally_open
 
 
 def extract(path, tile, window, frame, roads_only, opened=None):
@@ -127,6 +137,7 @@ def extract(path, tile, window, frame, roads_only, opened=None):
     core_rect = G.rect(core, fallback)
     seams_x = [v for v in core[0:2] if v != G.INF and v != -G.INF]
     seams_u = [v for v in core[2:4] if v != G.INF and v != -G.INF]
+    seam_lines = core_rect.GetBoundary()  # the core's sides (in (x, u)); cuts lie on its seams
     tol = frame.cell
     ds = ogr.Open(path)
     out, schemas, violations = {}, {}, []
@@ -173,11 +184,22 @@ def extract(path, tile, window, frame, roads_only, opened=None):
                 attrs = _attrs(f, names[name])
                 gu = G.to_u(g, s)
                 if core[0] < env[0] and env[1] < core[1] and core[2] < env[2] and env[3] < core[3]:
-                    out[name].append((g.ExportToWkb(), attrs, False))
+                    out[name].append((g.ExportToWkb(), attrs, None))
                     continue
-                for piece in G.polygons_of(gu.Intersection(core_rect)):
+                kept = G.polygons_of(gu.Intersection(core_rect))
+                if len(kept) == 1 and kept[0].GetArea() >= gu.GetArea() * (1 - 1e-12):
+                    # Inside the closed core, touching a seam from this side only: a whole feature,
+                    # not a piece to join with the neighbour's feature across the seam.
+                    out[name].append((g.ExportToWkb(), attrs, None))
+                    continue
+                # Each piece keeps its cut: the stretches of its boundary that the clip made (on a
+                # seam, not on the feature's own boundary). The stitcher joins pieces whose cuts
+                # overlap, so two features that merely touch along a seam stay two.
+                own = gu.GetBoundary().Buffer(1e-7 * frame.cell)
+                for piece in kept:
                     G.snap_to_seams(piece, seams_x, seams_u, 1e-9 * max(1.0, abs(core_rect.GetEnvelope()[0])))
-                    out[name].append((G.to_u(piece, s).ExportToWkb(), attrs, True))
+                    cut = piece.GetBoundary().Intersection(seam_lines).Difference(own)
+                    out[name].append((G.to_u(piece, s).ExportToWkb(), attrs, G.to_u(cut, s).ExportToWkb()))
 
     for f in ds.GetLayerByName("road_nodes"):
         g = f.GetGeometryRef()
@@ -215,7 +237,7 @@ def run_tile(job):
     start = time.time()
     attempts = []
     while True:
-        window = tile.window(halo)
+        window = tile.window(halo, job.get("boxes", ()))
         tmp = os.path.join(job["workdir"], "tile_%s_h%d.%s.gpkg" % (tile.name, halo, uuid.uuid4().hex[:8]))
         cmd = [job["urbanvec"], "vectorize", "-q", "-srcwin"] + [str(v) for v in window] + job["vargs"] + [
             job["landuse"], tmp]
@@ -227,7 +249,9 @@ def run_tile(job):
                             % (tile.name, " ".join(map(str, window)), proc.returncode,
                                last[-1] if last else proc.stderr.strip()[-300:]))
         try:
-            opened = open_regions(road_mask(job["landuse"], window, job.get("classes")), window, frame)
+            mask = job.get("open_regions")
+            opened = open_regions(road_mask(job["landuse"], window, job.get("classes")), window, frame,
+                                  open_mask(mask, window) if mask else None)
             owned, schemas, violations = extract(tmp, tile, window, frame, job["roads_only"], opened)
             styles = read_styles(tmp)
         finally:

@@ -217,10 +217,18 @@ vectorize::VectorizeInput loadGridInput(const GridInputPaths& paths, std::vector
   in.spec = info.spec;
   in.originCol = colOffset;
   in.originRow = rowOffset;
+  if (window) {  // the whole raster's frame and transform (GridSpec::frameCol, issue 22)
+    in.spec.transform = fullInfo.spec.transform;
+    in.spec.frameCol = colOffset;
+    in.spec.frameRow = rowOffset;
+    in.spec.frameHeight = fullInfo.spec.height;
+  }
   requireMetricGrid(info.spec, luRole, paths.landUse);
   if (info.spec.crsWkt.empty() && warnings)
     warnings->push_back("land-use raster '" + paths.landUse + "' has no CRS: the output layers have none");
   in.landUse = Grid<std::uint8_t>(raw.width, raw.height, 0);
+  in.landUse.frameDx = in.spec.frameDx();
+  in.landUse.frameDy = in.spec.frameDy();
   std::map<double, LandUse> classes;
   if (!paths.classes.empty())
     for (const auto& [v, u] : readClassTable(paths.classes)) classes[v] = u;
@@ -293,6 +301,23 @@ vectorize::VectorizeInput loadGridInput(const GridInputPaths& paths, std::vector
         throw invalidInput("parcels raster '" + paths.parcels + "' holds negative parcel id " +
                            numberText(v) + where + " (ids must be >= 0, 0 = no parcel)");
       in.parcelIds.cells[i] = static_cast<std::int32_t>(v);
+    }
+  }
+  if (!paths.openRegions.empty()) {
+    RasterInfo oi;
+    const std::string role = "open-regions raster";
+    checkSameGrid(paths.openRegions, role);
+    const Grid<double> open = readRasterBand<double>(paths.openRegions, role, &oi, window);
+    requireSameGridAs(info, luRole, paths.landUse, oi, role, paths.openRegions);
+    in.openRegions = Grid<std::uint8_t>(open.width, open.height, 0);
+    for (size_t i = 0; i < open.cells.size(); ++i) {
+      const double v = open.cells[i];
+      if (v != 0 && v != 1)
+        throw invalidInput(role + " '" + paths.openRegions + "' holds value " + numberText(v) +
+                           " at column " + std::to_string(i % open.width + colOffset) + ", row " +
+                           std::to_string(i / open.width + rowOffset) +
+                           ", which is not 0 (enclosed region) or 1 (region reaching the grid's edge)");
+      in.openRegions.cells[i] = static_cast<std::uint8_t>(v);
     }
   }
   if (!paths.parcelTable.empty()) {

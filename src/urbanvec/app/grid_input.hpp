@@ -20,6 +20,9 @@ struct GridInputPaths {
   std::string parcels;      ///< optional
   std::string parcelTable;  ///< optional; needs `parcels`
   std::string classes;      ///< optional `value,class_name` CSV mapping raster values to classes
+  /// optional 0/1 raster: 1 where the cell's road-bounded region reaches the whole grid's edge
+  /// (VectorizeInput::openRegions; written by urbanvec-tiles for its windows)
+  std::string openRegions;
   /// Read only this window of every raster (`-srcwin`, issue 22 tiles); the rasters must still be one
   /// grid as a whole. Parcel table rows of ids outside the window are skipped.
   std::optional<io::RasterWindow> window;

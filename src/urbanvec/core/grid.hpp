@@ -32,6 +32,16 @@ struct GridSpec {
   int height = 0;
   GeoTransform transform;
   std::string crsWkt;  ///< empty when the raster has no CRS
+  /// A window of a larger raster (urbanvec vectorize -srcwin, issue 22): its first cell's column and
+  /// row in the whole raster, and the whole raster's height; frameHeight 0 = not a window. A window's
+  /// `transform` is then the whole raster's, and the vectorizer's internal frame (x = col,
+  /// y = height - row) is the whole raster's: x = frameDx() + col, y = frameDy() + height - row, so
+  /// every floating-point operation on a feature is the same in any window that holds it.
+  int frameCol = 0;
+  int frameRow = 0;
+  int frameHeight = 0;
+  int frameDx() const { return frameHeight > 0 ? frameCol : 0; }
+  int frameDy() const { return frameHeight > 0 ? frameHeight - frameRow - height : 0; }
 
   size_t cellCount() const { return static_cast<size_t>(width) * static_cast<size_t>(height); }
   /// World coordinates of a cell's centre.
@@ -44,6 +54,10 @@ struct Grid {
   int width = 0;
   int height = 0;
   std::vector<T> cells;
+  /// GridSpec::frameDx() / frameDy() of the raster this grid holds (0 unless a window of a larger
+  /// raster): the internal-frame offset of its cells.
+  int frameDx = 0;
+  int frameDy = 0;
 
   Grid() = default;
   Grid(int w, int h, T fill = T{})

@@ -19,7 +19,7 @@ struct Frame {
   Vec2 toWorld(const Vec2& p) const { return vectorize::toWorld(p, grid); }
   Vec2 toCells(const Vec2& w) const {
     const Vec2 px = grid.transform.worldToPixel(w);
-    return {px.x, grid.height - px.y};
+    return {px.x, (grid.frameHeight > 0 ? grid.frameHeight : grid.height) - px.y};
   }
   LineString toWorld(const LineString& line) const {
     LineString out;
@@ -202,6 +202,31 @@ std::vector<MultiLineString> roadFacingEdges(const BlocksResult& blocks, const F
   return out;
 }
 
+bool lexicographicLess(const Vec2& a, const Vec2& b) {
+  return a.x < b.x || (a.x == b.x && a.y < b.y);
+}
+
+/// Rotates a ring to start at its smallest vertex (x, then y), keeping its orientation and closure.
+void startAtSmallestVertex(Ring& ring) {
+  if (ring.size() < 4) return;
+  const bool closed = ring.front() == ring.back();
+  if (closed) ring.pop_back();
+  std::rotate(ring.begin(), std::min_element(ring.begin(), ring.end(), lexicographicLess), ring.end());
+  if (closed) ring.push_back(ring.front());
+}
+
+/// A block's outline in one canonical form: each ring starting at its smallest vertex, holes in the
+/// order of those vertices. The overlays of C-D give the same rings with a start that depends on
+/// the other pieces they met, which differ between a tile's window and a single run (issue 22);
+/// stages E2-E6 follow the outline from its start, so they get the same block in any window.
+void canonicalizeOutline(Polygon& polygon) {
+  startAtSmallestVertex(polygon.outer);
+  for (Ring& hole : polygon.holes) startAtSmallestVertex(hole);
+  std::sort(polygon.holes.begin(), polygon.holes.end(), [](const Ring& a, const Ring& b) {
+    return !b.empty() && (a.empty() || lexicographicLess(a.front(), b.front()));
+  });
+}
+
 Layer makeLayer(const std::string& name, GeometryType type, std::vector<FieldDef> fields) {
   Layer layer;
   layer.name = name;
@@ -244,6 +269,7 @@ CityResult vectorizeCity(const RoadNetwork& network, const Grid<std::uint8_t>& c
   blocksOptions.water.threads = options.parcels.threads;
   result.blocks = vectorizeBlocks(network, city, grid, blocksOptions, subProgress(progress, 0.0, 0.35));
   releaseFreedMemory();  // the overlays of C-D5
+  for (BlockInfo& info : result.blocks.blockInfo) canonicalizeOutline(info.shape);
 
   reportProgress(progress, 0.35, "road frontage");
   const std::vector<MultiLineString> facing =

@@ -165,7 +165,9 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
         "intersection clusters");
 
   run("A2", "raw blocks", 0.05, false, [&](const Progress& p) {
-    RawBlocks rb = buildRawBlocks(result.cells, options.rawBlocks, p);
+    RawBlockOptions raw = options.rawBlocks;
+    if (input.openRegions.size() != 0) raw.openRegions = &input.openRegions;
+    RawBlocks rb = buildRawBlocks(result.cells, raw, p);
     result.blocks = std::move(rb.blocks);
     result.blockOf = std::move(rb.blockOf);
     std::size_t internal = 0;

@@ -35,6 +35,11 @@ struct VectorizeInput {
   /// same numbers in every window that holds it.
   std::int64_t originCol = 0;
   std::int64_t originRow = 0;
+  /// Optional (empty = none): 1 where the cell's road-bounded region (4-connected non-road cells)
+  /// reaches the edge of the whole grid, 0 where it is enclosed. A2 then takes a region's status from
+  /// it rather than from this grid's own edge, so a window (issue 22) classes a region it cuts as the
+  /// whole grid does. urbanvec-tiles computes it over the whole grid, tile by tile.
+  Grid<std::uint8_t> openRegions;
 };
 
 /// Working patch code beyond the nine classes: a patch that was road and was removed by A3 or A4.3
@@ -49,6 +54,20 @@ inline bool isRoadCode(std::uint8_t c) {
 /// A cell's centre in the internal frame (spec §0): (c + 0.5, H - r - 0.5).
 inline Vec2 patchCentre(int col, int row, int height) {
   return {col + 0.5, height - row - 0.5};
+}
+
+/// A cell's centre in the internal frame of a grid that may be a window (Grid::frameDx/frameDy):
+/// (dx + c + 0.5, dy + H - r - 0.5), the whole raster's frame.
+template <class T>
+Vec2 patchCentre(const Grid<T>& grid, int col, int row) {
+  return patchCentre(grid.frameDx + col, row, grid.frameDy + grid.height);
+}
+
+/// The internal-frame position of a grid's corner (col 0, y 0): subtract it from a position to get
+/// the grid's own frame (x = col, y = H - row) for cell look-ups; exact for integer offsets.
+template <class T>
+Vec2 frameOffset(const Grid<T>& grid) {
+  return {static_cast<double>(grid.frameDx), static_cast<double>(grid.frameDy)};
 }
 
 /// A simulated block (spec §2.2 SimBlock, built by A2).

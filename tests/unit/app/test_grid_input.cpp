@@ -13,6 +13,7 @@
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/io/crs.hpp"
 #include "urbanvec/io/raster_io.hpp"
+#include "urbanvec/vectorize/roads/road_network.hpp"
 
 using namespace urbanvec;
 namespace fs = std::filesystem;
@@ -219,8 +220,19 @@ TEST(GridInput, ReadsOnlyTheWindowGeoreferencedAtItsPlace) {
   const vectorize::VectorizeInput in = app::loadGridInput(paths);
   EXPECT_EQ(in.spec.width, 2);
   EXPECT_EQ(in.spec.height, 2);
-  EXPECT_DOUBLE_EQ(in.spec.transform.c[0], 371576 + 10);
-  EXPECT_DOUBLE_EQ(in.spec.transform.c[3], 4845656 - 10);
+  // The window keeps the whole raster's transform and frame (issue 22): its first cell's top-left
+  // corner is internal (frameDx, frameDy + height), which is world (371576 + 10, 4845656 - 10).
+  EXPECT_DOUBLE_EQ(in.spec.transform.c[0], 371576);
+  EXPECT_DOUBLE_EQ(in.spec.transform.c[3], 4845656);
+  EXPECT_EQ(in.spec.frameCol, 1);
+  EXPECT_EQ(in.spec.frameRow, 1);
+  EXPECT_EQ(in.spec.frameHeight, 3);
+  EXPECT_EQ(in.landUse.frameDx, 1);
+  EXPECT_EQ(in.landUse.frameDy, 0);  // 3 rows - row 1 - 2 rows: the window's bottom is the raster's
+  const Vec2 corner =
+      vectorize::toWorld(Vec2(in.landUse.frameDx, in.landUse.frameDy + in.landUse.height), in.spec);
+  EXPECT_DOUBLE_EQ(corner.x, 371576 + 10);
+  EXPECT_DOUBLE_EQ(corner.y, 4845656 - 10);
   EXPECT_EQ(in.originCol, 1);
   EXPECT_EQ(in.originRow, 1);
   for (int r = 0; r < 2; ++r)
@@ -233,6 +245,23 @@ TEST(GridInput, ReadsOnlyTheWindowGeoreferencedAtItsPlace) {
   ASSERT_EQ(in.parcelTable.size(), 2u);
   EXPECT_EQ(in.parcelTable[0].id, 2);
   EXPECT_EQ(in.parcelTable[1].id, 3);
+  // The open-regions raster is read through the window and holds 0 or 1 only.
+  Grid<std::uint8_t> open(4, 3, 0);
+  open.at(2, 1) = 1;
+  const std::string oPath = (d / "open.tif").string();
+  io::writeRasterBand(oPath, spec, open, std::nullopt);
+  paths.openRegions = oPath;
+  const vectorize::VectorizeInput withOpen = app::loadGridInput(paths);
+  ASSERT_EQ(withOpen.openRegions.width, 2);
+  EXPECT_EQ(withOpen.openRegions.at(1, 0), 1);
+  EXPECT_EQ(withOpen.openRegions.at(0, 0), 0);
+  open.at(1, 1) = 2;
+  io::writeRasterBand(oPath, spec, open, std::nullopt);
+  EXPECT_EQ(message([&] { app::loadGridInput(paths); }),
+            "open-regions raster '" + oPath +
+                "' holds value 2 at column 1, row 1, which is not 0 (enclosed region) or 1 (region reaching "
+                "the grid's edge)");
+  paths.openRegions.clear();
   // A window reaching past the grid is refused, naming the raster's size.
   paths.window = io::RasterWindow{3, 2, 2, 2};
   EXPECT_EQ(message([&] { app::loadGridInput(paths); }),

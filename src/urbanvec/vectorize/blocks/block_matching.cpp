@@ -11,6 +11,7 @@
 #include "urbanvec/core/geos.hpp"
 #include "urbanvec/vectorize/blocks/water_split.hpp"
 #include "urbanvec/vectorize/pavement/road_geometry.hpp"
+#include "urbanvec/vectorize/vectorize_input.hpp"
 
 namespace urbanvec::vectorize {
 
@@ -54,8 +55,13 @@ BlockMatching matchSimulatedBlocks(const std::vector<Polygon>& vectorBlocks, con
     return -1;
   };
   const int h = city.grid.height;
+  // A window keeps the whole raster's frame (Grid::frameDx/frameDy, issue 22): positions are shifted
+  // by `off` against the window's cells (exactly: integers).
+  const Vec2 off = frameOffset(city.grid);
+  const int x0Frame = city.grid.frameDx, topFrame = city.grid.frameDy + h;
+  auto centreOf = [&](const GridCell& cell) { return cellCentre(cell, h) + off; };
   auto ownCell = [&](const Vec2& p, int b) {
-    const GridCell c = cellAt(p, h);
+    const GridCell c = cellAt(p - off, h);
     return blockOfCell.inside(c.col, c.row) && blockOfCell.at(c.col, c.row) == b;
   };
   std::map<int, size_t> parcelById;
@@ -107,7 +113,7 @@ BlockMatching matchSimulatedBlocks(const std::vector<Polygon>& vectorBlocks, con
       // Where the sampled cells lie.
       std::map<int, size_t> cellsIn;
       for (size_t k = 0; k < counted; ++k) {
-        const int w = locate(cellCentre(sampled(k), h));
+        const int w = locate(centreOf(sampled(k)));
         if (w >= 0) ++cellsIn[w];
       }
       const size_t picked = cellsIn.count(v) ? cellsIn[v] : 0;
@@ -126,10 +132,10 @@ BlockMatching matchSimulatedBlocks(const std::vector<Polygon>& vectorBlocks, con
     if (v < 0) {
       std::vector<std::pair<double, size_t>> cells;
       for (size_t k = 0; k < block.cells.size(); ++k)
-        cells.emplace_back(distance(cellCentre(block.cells[k], h), c), k);
+        cells.emplace_back(distance(centreOf(block.cells[k]), c), k);
       std::sort(cells.begin(), cells.end());
       for (const auto& [d, k] : cells) {
-        v = locate(cellCentre(block.cells[k], h));
+        v = locate(centreOf(block.cells[k]));
         if (v >= 0) break;
       }
       rule = MatchRule::CellCentre;
@@ -140,10 +146,10 @@ BlockMatching matchSimulatedBlocks(const std::vector<Polygon>& vectorBlocks, con
       double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
       for (size_t k = 0; k < counted; ++k) {
         const GridCell cell = sampled(k);
-        x0 = std::min(x0, static_cast<double>(cell.col));
-        x1 = std::max(x1, cell.col + 1.0);
-        y0 = std::min(y0, h - cell.row - 1.0);
-        y1 = std::max(y1, static_cast<double>(h - cell.row));
+        x0 = std::min(x0, static_cast<double>(x0Frame + cell.col));
+        x1 = std::max(x1, x0Frame + cell.col + 1.0);
+        y0 = std::min(y0, topFrame - cell.row - 1.0);
+        y1 = std::max(y1, static_cast<double>(topFrame - cell.row));
       }
       geos::GeomPtr box = ctx.polygon({{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}, {x0, y0}}, {}});
       double best = options.minOverlapArea;
@@ -156,7 +162,7 @@ BlockMatching matchSimulatedBlocks(const std::vector<Polygon>& vectorBlocks, con
         double area = 0.0;
         for (size_t k = 0; k < counted; ++k) {
           const GridCell cell = sampled(k);
-          const double cx = cell.col, cy = h - cell.row - 1.0;
+          const double cx = x0Frame + cell.col, cy = topFrame - cell.row - 1.0;
           GEOSGeometry* part = GEOSClipByRect_r(ctx.handle(), piece.get(), cx, cy, cx + 1, cy + 1);
           if (!part) continue;
           double a = 0.0;

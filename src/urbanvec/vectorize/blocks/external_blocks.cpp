@@ -193,7 +193,8 @@ void addIslandBlocks(const geos::Context& ctx, const SimulatedCity& city, const 
     if (!island) continue;
     std::vector<geos::GeomPtr> squares;
     for (const GridCell& cell : block.cells) {
-      const double x0 = cell.col, y0 = h - cell.row - 1.0;
+      // A window keeps the whole raster's frame (Grid::frameDx/frameDy, issue 22).
+      const double x0 = grid.frameDx + cell.col, y0 = grid.frameDy + h - cell.row - 1.0;
       squares.push_back(
           ctx.polygon({{{x0, y0}, {x0 + 1, y0}, {x0 + 1, y0 + 1}, {x0, y0 + 1}, {x0, y0}}, {}}));
     }

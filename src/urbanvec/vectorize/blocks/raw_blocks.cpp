@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include "urbanvec/core/error.hpp"
+
 namespace urbanvec::vectorize {
 
 namespace {
@@ -35,6 +37,8 @@ void floodFill(int seed, std::int32_t label, int width, int height, Grid<std::in
 RawBlocks buildRawBlocks(const Grid<std::uint8_t>& cells, const RawBlockOptions& options,
                          const Progress& progress) {
   const int w = cells.width, h = cells.height;
+  if (options.openRegions && (options.openRegions->width != w || options.openRegions->height != h))
+    throw invalidInput("the open-regions grid does not have the size of the land-use grid");
   auto code = [&](int i) { return static_cast<LandUse>(cells.cells[i]); };
   auto isRoadLike = [&](int i) { return isRoadCode(cells.cells[i]); };
 
@@ -48,9 +52,13 @@ RawBlocks buildRawBlocks(const Grid<std::uint8_t>& cells, const RawBlockOptions&
     floodFill(i, static_cast<std::int32_t>(enclosed.size()), w, h, region, stack, &members,
               [&](int j) { return !isRoadLike(j); });
     bool touchesBorder = false;
-    for (int m : members) {
-      const int c = m % w, r = m / w;
-      if (c == 0 || r == 0 || c == w - 1 || r == h - 1) touchesBorder = true;
+    if (options.openRegions) {  // the whole grid's answer for a window (issue 22)
+      for (int m : members) touchesBorder = touchesBorder || options.openRegions->cells[m] != 0;
+    } else {
+      for (int m : members) {
+        const int c = m % w, r = m / w;
+        if (c == 0 || r == 0 || c == w - 1 || r == h - 1) touchesBorder = true;
+      }
     }
     enclosed.push_back(!touchesBorder);
   }
@@ -80,7 +88,7 @@ RawBlocks buildRawBlocks(const Grid<std::uint8_t>& cells, const RawBlockOptions&
       const LandUse u = code(m);
       b.developedArea += isDeveloped(u);
       b.undevelopedArea += u == LandUse::Unused;
-      sum += patchCentre(c, r, h);
+      sum += patchCentre(cells, c, r);
       const int nb[4][2] = {{c, r - 1}, {c + 1, r}, {c, r + 1}, {c - 1, r}};
       for (const auto& n : nb)
         if (cells.inside(n[0], n[1]) && cells.at(n[0], n[1]) == static_cast<std::uint8_t>(LandUse::Water))

@@ -19,12 +19,14 @@ namespace {
 /// border or against a road cell (spec D2 "endpoints fixed where the chain ends"). Without this the
 /// averaging would pull water away from the curbs and leave land bridges that stop the split.
 bool chainEnd(const Vec2& p, const Grid<LandUse>& landUse) {
-  const int w = landUse.width, h = landUse.height;
-  if (p.x <= 0.0 || p.y <= 0.0 || p.x >= w || p.y >= h) return true;
+  // A window keeps the whole raster's frame (Grid::frameDx/frameDy, issue 22).
+  const int x0 = landUse.frameDx, y0 = landUse.frameDy;
+  const int w = x0 + landUse.width, h = y0 + landUse.height;
+  if (p.x <= x0 || p.y <= y0 || p.x >= w || p.y >= h) return true;
   constexpr double kTouch = 1e-9;
   for (double dx : {-kTouch, kTouch})
     for (double dy : {-kTouch, kTouch}) {
-      const int col = static_cast<int>(std::floor(p.x + dx));
+      const int col = static_cast<int>(std::floor(p.x + dx)) - x0;
       const int row = h - 1 - static_cast<int>(std::floor(p.y + dy));
       if (isRoad(landUse.get(col, row, LandUse::Unused))) return true;
     }
@@ -84,9 +86,9 @@ CellTally tallyCells(const Polygon& polygon, const Grid<int>& blockOfCell, const
     minY = std::min(minY, p.y);
     maxY = std::max(maxY, p.y);
   }
-  const int h = landUse.height;
+  const int dx = landUse.frameDx, h = landUse.frameDy + landUse.height;  // a window's frame (issue 22)
   const int rowFirst = std::max(0, static_cast<int>(std::floor(h - 0.5 - maxY)));
-  const int rowLast = std::min(h - 1, static_cast<int>(std::ceil(h - 0.5 - minY)));
+  const int rowLast = std::min(landUse.height - 1, static_cast<int>(std::ceil(h - 0.5 - minY)));
   std::map<int, int> counts;
   std::vector<double> xs;
   for (int row = rowFirst; row <= rowLast; ++row) {
@@ -103,8 +105,8 @@ CellTally tallyCells(const Polygon& polygon, const Grid<int>& blockOfCell, const
     for (const Ring& hole : polygon.holes) crossings(hole);
     std::sort(xs.begin(), xs.end());
     for (size_t k = 0; k + 1 < xs.size(); k += 2) {
-      const int colFirst = std::max(0, static_cast<int>(std::ceil(xs[k] - 0.5)));
-      const int colLast = std::min(landUse.width - 1, static_cast<int>(std::ceil(xs[k + 1] - 0.5)) - 1);
+      const int colFirst = std::max(0, static_cast<int>(std::ceil(xs[k] - 0.5)) - dx);
+      const int colLast = std::min(landUse.width - 1, static_cast<int>(std::ceil(xs[k + 1] - 0.5)) - 1 - dx);
       for (int col = colFirst; col <= colLast; ++col) {
         ++tally.cells;
         const LandUse use = landUse.at(col, row);
@@ -131,10 +133,10 @@ MultiPolygon waterPolygons(const Grid<LandUse>& landUse, const WaterSplitOptions
                         std::to_string(options.resampleSpacing) + " cells.");
   reportProgress(progress, 0.0, "water");
   geos::Context ctx;
-  const int h = landUse.height;
+  const int dx = landUse.frameDx, h = landUse.frameDy + landUse.height;  // a window's frame (issue 22)
   // Horizontal runs of water cells as rectangles: far fewer union inputs than single cells.
   std::vector<geos::GeomPtr> runs;
-  for (int row = 0; row < h; ++row) {
+  for (int row = 0; row < landUse.height; ++row) {
     int col = 0;
     while (col < landUse.width) {
       if (landUse.at(col, row) != LandUse::Water) {
@@ -144,12 +146,8 @@ MultiPolygon waterPolygons(const Grid<LandUse>& landUse, const WaterSplitOptions
       const int start = col;
       while (col < landUse.width && landUse.at(col, row) == LandUse::Water) ++col;
       const double y0 = h - row - 1, y1 = h - row;
-      runs.push_back(ctx.polygon(Polygon{{{double(start), y0},
-                                          {double(col), y0},
-                                          {double(col), y1},
-                                          {double(start), y1},
-                                          {double(start), y0}},
-                                         {}}));
+      const double x0 = dx + start, x1 = dx + col;
+      runs.push_back(ctx.polygon(Polygon{{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}, {x0, y0}}, {}}));
     }
   }
   if (runs.empty()) {

@@ -79,7 +79,7 @@ ParcelLoading loadParcels(const VectorizeInput& input, const Grid<std::int32_t>&
     double people = 0;
     std::array<int, kLandUseClassCount> votes{};
     for (int i : p.patches) {
-      sum += patchCentre(i % w, i / w, h);
+      sum += patchCentre(input.landUse, i % w, i / w);
       if (hasDensity) people += input.density.cells[i];
       const std::uint8_t u = input.landUse.cells[i];
       if (u < kLandUseClassCount) ++votes[u];

@@ -52,12 +52,13 @@ bool enclosesDevelopedLand(const RoadGraph& g, const std::vector<int>& face,
     minX = std::min(minX, p.x), maxX = std::max(maxX, p.x);
     minY = std::min(minY, p.y), maxY = std::max(maxY, p.y);
   }
-  const int h = landUse.height;
-  for (int col = static_cast<int>(std::floor(minX)); col <= static_cast<int>(std::ceil(maxX)); ++col)
+  const int dx = landUse.frameDx, h = landUse.frameDy + landUse.height;  // a window's frame (issue 22)
+  for (int col = static_cast<int>(std::floor(minX)) - dx; col <= static_cast<int>(std::ceil(maxX)) - dx;
+       ++col)
     for (int row = h - static_cast<int>(std::ceil(maxY)) - 1; row <= h - static_cast<int>(std::floor(minY));
          ++row) {
       if (!landUse.inside(col, row) || !isDeveloped(static_cast<LandUse>(landUse.at(col, row)))) continue;
-      const Vec2 centre(col + 0.5, h - row - 0.5);
+      const Vec2 centre(dx + col + 0.5, h - row - 0.5);
       // Even-odd ray cast.
       bool inside = false;
       for (size_t k = 0; k + 1 < ring.size(); ++k) {

@@ -36,14 +36,14 @@ class LinkCover {
   }
   /// Adds `delta` to the count of every cell within the radius of segment ab.
   void add(const Vec2& a, const Vec2& b, int delta) {
-    forEachCellNearSegment(cells_.width, cells_.height, a, b, radius_, [&](int col, int row, double) {
+    forEachCellNearSegment(cells_, a, b, radius_, [&](int col, int row, double) {
       count_[static_cast<size_t>(row) * cells_.width + col] += delta;
     });
   }
   /// Whether a road cell within the radius of segment ab has no link left.
   bool uncoveredNear(const Vec2& a, const Vec2& b) const {
     bool uncovered = false;
-    forEachCellNearSegment(cells_.width, cells_.height, a, b, radius_, [&](int col, int row, double) {
+    forEachCellNearSegment(cells_, a, b, radius_, [&](int col, int row, double) {
       const size_t i = static_cast<size_t>(row) * cells_.width + col;
       uncovered = uncovered || (isRoadCode(cells_.cells[i]) && count_[i] <= 0);
     });

@@ -85,7 +85,9 @@ PerimeterStats addExternalPerimeters(RoadGraph& graph, const Grid<std::uint8_t>&
       for (const auto& v : line) {
         // A vertex met twice (checkerboard crossing) is one node, so no duplicate nodes arise.
         auto [it, isNew] = nodeAt.try_emplace(v.second * vw + v.first, -1);
-        if (isNew) it->second = graph.addNode(Vec2(v.first, h - v.second), NodeType::Perimeter);
+        if (isNew)
+          it->second =
+              graph.addNode(Vec2(cells.frameDx + v.first, cells.frameDy + h - v.second), NodeType::Perimeter);
         const int id = it->second;
         if (prev >= 0) graph.link(prev, id);
         prev = id;

@@ -88,9 +88,11 @@ bool nearInterior(const Vec2& p, const Vec2& a, const Vec2& b) {
 }
 
 /// Sets mask[cell] = 1 for every cell whose centre lies within r of segment ab (internal frame).
-void markWithin(std::vector<std::uint8_t>& mask, int w, int h, const Vec2& a, const Vec2& b, double r) {
-  forEachCellNearSegment(w, h, a, b, r,
-                         [&](int col, int row, double) { mask[static_cast<size_t>(row) * w + col] = 1; });
+void markWithin(std::vector<std::uint8_t>& mask, const Grid<std::uint8_t>& grid, const Vec2& a, const Vec2& b,
+                double r) {
+  forEachCellNearSegment(grid, a, b, r, [&](int col, int row, double) {
+    mask[static_cast<size_t>(row) * grid.width + col] = 1;
+  });
 }
 
 struct PointHash {
@@ -173,17 +175,17 @@ RoadCoverageCheck checkRoadCoverage(const Grid<std::uint8_t>& landUse, const Gri
   for (const NetworkSegment& s : network.segments) {
     if (s.roadClass == RoadClass::Perimeter) continue;
     for (size_t k = 0; k + 1 < s.points.size(); ++k)
-      markWithin(nearRoad, w, h, s.points[k], s.points[k + 1], maxDistance);
-    if (s.points.size() == 1) markWithin(nearRoad, w, h, s.points[0], s.points[0], maxDistance);
+      markWithin(nearRoad, landUse, s.points[k], s.points[k + 1], maxDistance);
+    if (s.points.size() == 1) markWithin(nearRoad, landUse, s.points[0], s.points[0], maxDistance);
   }
   std::vector<std::uint8_t> nearRemoved, nearDeadEnd;
   if (!cycleRemovedLinks.empty()) {
     nearRemoved.assign(nearRoad.size(), 0);
-    for (const auto& [a, b] : cycleRemovedLinks) markWithin(nearRemoved, w, h, a, b, maxDistance);
+    for (const auto& [a, b] : cycleRemovedLinks) markWithin(nearRemoved, landUse, a, b, maxDistance);
   }
   if (!deadEndRemovedLinks.empty()) {
     nearDeadEnd.assign(nearRoad.size(), 0);
-    for (const auto& [a, b] : deadEndRemovedLinks) markWithin(nearDeadEnd, w, h, a, b, maxDistance);
+    for (const auto& [a, b] : deadEndRemovedLinks) markWithin(nearDeadEnd, landUse, a, b, maxDistance);
   }
   const bool haveCleaned = cleaned.width == w && cleaned.height == h;
   for (size_t i = 0; i < landUse.cells.size(); ++i) {
@@ -279,15 +281,15 @@ std::size_t restoreUncoveringSegments(RoadNetwork& simplified, const RoadNetwork
   if (simplified.segments.size() != exact.segments.size()) return 0;
   const int w = landUse.width, h = landUse.height;
   if (w <= 0 || h <= 0) return 0;
-  auto roads = [](const RoadNetwork& net, std::vector<std::uint8_t>& mask, int w, int h, double r) {
+  auto roads = [&landUse](const RoadNetwork& net, std::vector<std::uint8_t>& mask, double r) {
     for (const NetworkSegment& s : net.segments) {
       if (s.roadClass == RoadClass::Perimeter) continue;
       for (size_t k = 0; k + 1 < s.points.size(); ++k)
-        markWithin(mask, w, h, s.points[k], s.points[k + 1], r);
+        markWithin(mask, landUse, s.points[k], s.points[k + 1], r);
     }
   };
   std::vector<std::uint8_t> nearSimplified(static_cast<size_t>(w) * h, 0);
-  roads(simplified, nearSimplified, w, h, maxDistance);
+  roads(simplified, nearSimplified, maxDistance);
   // The road cells the simplification uncovered: near no simplified road (and not removed on purpose).
   std::vector<std::uint8_t> lost(nearSimplified.size(), 0);
   bool anyLost = false;
@@ -307,12 +309,13 @@ std::size_t restoreUncoveringSegments(RoadNetwork& simplified, const RoadNetwork
     if (s.roadClass == RoadClass::Perimeter || simplified.segments[k].points == s.points) continue;
     std::vector<size_t> touched;
     for (size_t j = 0; j + 1 < s.points.size(); ++j)
-      forEachCellNearSegment(w, h, s.points[j], s.points[j + 1], maxDistance, [&](int col, int row, double) {
-        const size_t i = static_cast<size_t>(row) * w + col;
-        if (!lost[i] || near[i]) return;
-        near[i] = 1;
-        touched.push_back(i);
-      });
+      forEachCellNearSegment(landUse, s.points[j], s.points[j + 1], maxDistance,
+                             [&](int col, int row, double) {
+                               const size_t i = static_cast<size_t>(row) * w + col;
+                               if (!lost[i] || near[i]) return;
+                               near[i] = 1;
+                               touched.push_back(i);
+                             });
     if (!touched.empty()) {
       // The coarsest of half, a quarter of the tolerance, or none, that covers the cells again.
       LineString line = s.points;
@@ -320,7 +323,7 @@ std::size_t restoreUncoveringSegments(RoadNetwork& simplified, const RoadNetwork
         LineString candidate = simplifyTogether({s.points}, t).front();
         bool covers = true;
         for (size_t i : touched) {
-          const Vec2 c(static_cast<double>(i % w) + 0.5, h - static_cast<double>(i / w) - 0.5);
+          const Vec2 c = patchCentre(landUse, static_cast<int>(i % w), static_cast<int>(i / w));
           bool near = false;
           for (size_t j = 0; j + 1 < candidate.size() && !near; ++j)
             near = distanceToSegment(c, candidate[j], candidate[j + 1]) <= maxDistance + 1e-9;

@@ -114,14 +114,15 @@ RoadGraphBuild buildRoadGraph(Grid<std::uint8_t>& cells, const RoadGraphOptions&
     for (int c = 0; c < w; ++c) {
       const std::uint8_t v = cells.at(c, r);
       if (v == secondary) {
-        const int id = g.addNode(patchCentre(c, r, h), NodeType::Secondary, c, r);
+        const int id = g.addNode(patchCentre(cells, c, r), NodeType::Secondary, c, r);
         nodeOf.at(c, r) = id;
         g.nodes[id].psConnection =
             is(c, r - 1, primary) || is(c + 1, r, primary) || is(c, r + 1, primary) || is(c - 1, r, primary);
       } else if (v == primary && is(c + 1, r, primary) && is(c + 1, r + 1, primary) &&
                  is(c, r + 1, primary)) {
-        const Vec2 p =
-            options.primaryNodeAtCorner ? Vec2(c + 1.0, h - r - 1.0) : patchCentre(c + 1, r + 1, h);
+        const Vec2 p = options.primaryNodeAtCorner
+                           ? Vec2(cells.frameDx + c + 1.0, cells.frameDy + h - r - 1.0)
+                           : patchCentre(cells, c + 1, r + 1);
         nodeOf.at(c, r) = g.addNode(p, NodeType::Primary, c, r);
       }
     }

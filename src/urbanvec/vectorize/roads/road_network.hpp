@@ -89,17 +89,19 @@ struct SimulatedCity {
 /// Calls f(col, row, distance) for every cell of a w x h grid whose centre (col + 0.5, h - row - 0.5)
 /// lies within r of segment ab (internal frame; a centre at r up to rounding counts as within). Scans
 /// row by row only the columns the capsule around ab can reach, so the cost is about the capsule's
-/// area in cells.
+/// area in cells. With a frame offset (dx, dy) (Grid::frameDx/frameDy of a window) the centres are
+/// (dx + col + 0.5, dy + h - row - 0.5): the whole raster's frame, the same numbers in any window.
 template <class F>
-void forEachCellNearSegment(int w, int h, const Vec2& a, const Vec2& b, double r, F f) {
+void forEachCellNearSegment(int w, int h, int dx, int dy, const Vec2& a, const Vec2& b, double r, F f) {
   const double r2 = (r + 1e-9) * (r + 1e-9);
   const Vec2 ab = b - a;
   const double len2 = dot(ab, ab);
   const double yLo = std::min(a.y, b.y) - r, yHi = std::max(a.y, b.y) + r;
-  const int rowFirst = std::max(0, static_cast<int>(std::ceil(h - 0.5 - yHi - 1e-9)));
-  const int rowLast = std::min(h - 1, static_cast<int>(std::floor(h - 0.5 - yLo + 1e-9)));
+  const int top = dy + h;  // the frame's y of the grid's first row's top edge
+  const int rowFirst = std::max(0, static_cast<int>(std::ceil(top - 0.5 - yHi - 1e-9)));
+  const int rowLast = std::min(h - 1, static_cast<int>(std::floor(top - 0.5 - yLo + 1e-9)));
   for (int row = rowFirst; row <= rowLast; ++row) {
-    const double yc = h - row - 0.5;
+    const double yc = top - row - 0.5;
     // The part of ab within r of this row's centre line, widened by r, bounds the columns.
     double t0 = 0, t1 = 1;
     if (ab.y != 0) {
@@ -111,10 +113,10 @@ void forEachCellNearSegment(int w, int h, const Vec2& a, const Vec2& b, double r
       if (t0 > t1) continue;
     }
     const double x0 = a.x + ab.x * t0, x1 = a.x + ab.x * t1;
-    const int colFirst = std::max(0, static_cast<int>(std::ceil(std::min(x0, x1) - r - 0.5 - 1e-9)));
-    const int colLast = std::min(w - 1, static_cast<int>(std::floor(std::max(x0, x1) + r - 0.5 + 1e-9)));
+    const int colFirst = std::max(0, static_cast<int>(std::ceil(std::min(x0, x1) - r - 0.5 - 1e-9)) - dx);
+    const int colLast = std::min(w - 1, static_cast<int>(std::floor(std::max(x0, x1) + r - 0.5 + 1e-9)) - dx);
     for (int col = colFirst; col <= colLast; ++col) {
-      const Vec2 p(col + 0.5, yc);
+      const Vec2 p(dx + col + 0.5, yc);
       const double t = len2 > 0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
       const Vec2 d = p - (a + ab * t);
       const double d2 = dot(d, d);
@@ -123,10 +125,23 @@ void forEachCellNearSegment(int w, int h, const Vec2& a, const Vec2& b, double r
   }
 }
 
+template <class F>
+void forEachCellNearSegment(int w, int h, const Vec2& a, const Vec2& b, double r, F f) {
+  forEachCellNearSegment(w, h, 0, 0, a, b, r, f);
+}
+
+/// forEachCellNearSegment over the cells of `grid` (a window keeps the whole raster's frame).
+template <class T, class F>
+void forEachCellNearSegment(const Grid<T>& grid, const Vec2& a, const Vec2& b, double r, F f) {
+  forEachCellNearSegment(grid.width, grid.height, grid.frameDx, grid.frameDy, a, b, r, f);
+}
+
 /// Internal frame (x = col, y = H - row, pw) to world coordinates through the geotransform; correct
 /// for north-up, south-up and rotated transforms alike.
 inline Vec2 toWorld(const Vec2& internal, const GridSpec& spec) {
-  return spec.transform.pixelToWorld(internal.x, spec.height - internal.y);
+  // A window's transform and frame are the whole raster's (GridSpec::frameHeight, issue 22).
+  return spec.transform.pixelToWorld(internal.x,
+                                     (spec.frameHeight > 0 ? spec.frameHeight : spec.height) - internal.y);
 }
 
 }  // namespace urbanvec::vectorize

@@ -183,6 +183,8 @@ SimulatedCity simulatedCity(const Grid<std::uint8_t>& cells, const std::vector<S
                             const std::vector<SimParcel>& parcels) {
   SimulatedCity city;
   city.grid = Grid<LandUse>(cells.width, cells.height, LandUse::Unused);
+  city.grid.frameDx = cells.frameDx;  // a window keeps the whole raster's frame (issue 22)
+  city.grid.frameDy = cells.frameDy;
   for (size_t i = 0; i < cells.cells.size(); ++i)
     city.grid.cells[i] =
         cells.cells[i] < kLandUseClassCount ? static_cast<LandUse>(cells.cells[i]) : LandUse::Unused;

@@ -27,12 +27,13 @@ namespace {
 constexpr double kSmallestMove = 0.05;
 
 /// The road links (no perimeter) of `graph` at the node positions `pos`, bucketed by the unit cells
-/// of a w x h frame their bounding boxes overlap (kBucket cells square, clamped to the frame), to find
-/// the links near a point.
+/// of a w x h frame at `origin` their bounding boxes overlap (kBucket cells square, clamped to the
+/// frame), to find the links near a point.
 class LinkBuckets {
  public:
-  LinkBuckets(const RoadGraph& graph, const std::vector<Vec2>& pos, int w, int h)
-      : w_(std::max(1, (w + kBucket - 1) / kBucket)),
+  LinkBuckets(const RoadGraph& graph, const std::vector<Vec2>& pos, int w, int h, const Vec2& origin)
+      : origin_(origin),
+        w_(std::max(1, (w + kBucket - 1) / kBucket)),
         h_(std::max(1, (h + kBucket - 1) / kBucket)),
         start_(static_cast<size_t>(w_) * h_ + 1, 0) {
     // Counting pass, then a fill pass into one flat array.
@@ -76,8 +77,13 @@ class LinkBuckets {
  private:
   /// Bucket side, in cells: 4 keeps the index small and a 1.5-cell query within 2 x 2 buckets.
   static constexpr int kBucket = 4;
-  int cx(double v) const { return std::clamp(static_cast<int>(std::floor(v / kBucket)), 0, w_ - 1); }
-  int cy(double v) const { return std::clamp(static_cast<int>(std::floor(v / kBucket)), 0, h_ - 1); }
+  int cx(double v) const {
+    return std::clamp(static_cast<int>(std::floor((v - origin_.x) / kBucket)), 0, w_ - 1);
+  }
+  int cy(double v) const {
+    return std::clamp(static_cast<int>(std::floor((v - origin_.y) / kBucket)), 0, h_ - 1);
+  }
+  Vec2 origin_;
   int w_, h_;
   std::vector<std::int32_t> start_;
   std::vector<std::pair<std::int32_t, std::int32_t>> links_;
@@ -87,7 +93,6 @@ class LinkBuckets {
 /// cell of `cells` farther than `radius` from every road link that covered it, until none does.
 void undoUncoveringMoves(const RoadGraph& graph, const std::vector<char>& movable, std::vector<Vec2>& next,
                          const Grid<std::uint8_t>& cells, double radius) {
-  const int h = cells.height;
   const double r = radius + 1e-9;
   std::vector<Vec2> old(graph.nodes.size());
   for (size_t i = 0; i < graph.nodes.size(); ++i) old[i] = graph.nodes[i].p;
@@ -96,14 +101,14 @@ void undoUncoveringMoves(const RoadGraph& graph, const std::vector<char>& movabl
   double largest = 0.0;
   for (size_t i = 0; i < next.size(); ++i) largest = std::max(largest, length(next[i] - old[i]));
   if (largest == 0.0) return;
-  const LinkBuckets before(graph, old, cells.width, h);
+  const LinkBuckets before(graph, old, cells.width, cells.height, frameOffset(cells));
   std::vector<std::int64_t> candidates;
   for (size_t i = 0; i < graph.nodes.size(); ++i) {
     if (!movable[i] || next[i] == old[i]) continue;
     for (int j : graph.nodes[i].links) {
       if (graph.nodes[j].type == NodeType::Perimeter) continue;
       const Vec2 a = old[i], b = old[static_cast<size_t>(j)];
-      forEachCellNearSegment(cells.width, h, a, b, radius, [&](int col, int row, double d) {
+      forEachCellNearSegment(cells, a, b, radius, [&](int col, int row, double d) {
         if (isRoadCode(cells.at(col, row)) && d + largest > r)
           candidates.push_back(static_cast<std::int64_t>(row) * cells.width + col);
       });
@@ -112,7 +117,7 @@ void undoUncoveringMoves(const RoadGraph& graph, const std::vector<char>& movabl
   std::sort(candidates.begin(), candidates.end());
   candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
   auto atRisk = [&](std::int64_t k) {
-    const Vec2 c(static_cast<double>(k % cells.width) + 0.5, h - static_cast<double>(k / cells.width) - 0.5);
+    const Vec2 c = patchCentre(cells, static_cast<int>(k % cells.width), static_cast<int>(k / cells.width));
     return !before.anyNear(c, r,
                            [&](int a, int b) { return distanceToSegment(c, old[a], old[b]) + largest <= r; });
   };
@@ -127,8 +132,7 @@ void undoUncoveringMoves(const RoadGraph& graph, const std::vector<char>& movabl
   for (bool undone = !candidates.empty(); undone;) {
     undone = false;
     for (std::int64_t k : candidates) {
-      const Vec2 c(static_cast<double>(k % cells.width) + 0.5,
-                   h - static_cast<double>(k / cells.width) - 0.5);
+      const Vec2 c = patchCentre(cells, static_cast<int>(k % cells.width), static_cast<int>(k / cells.width));
       if (coveredNow(c)) continue;
       // Halve the moves of the ends of every link that covered it, down to none: its old links cover
       // it again at the latest.

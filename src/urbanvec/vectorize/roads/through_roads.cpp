@@ -34,7 +34,7 @@ bool consistentWithLine(const std::vector<Vec2>& placements, const Vec2& centre,
 /// True when a road cell's centre lies within r of p.
 bool nearRoadCell(const Grid<std::uint8_t>& cells, const Vec2& p, double r) {
   bool found = false;
-  forEachCellNearSegment(cells.width, cells.height, p, p, r,
+  forEachCellNearSegment(cells, p, p, r,
                          [&](int col, int row, double) { found = found || isRoadCode(cells.at(col, row)); });
   return found;
 }
@@ -67,7 +67,7 @@ std::vector<std::int64_t> cellsNearLinks(const RoadGraph& graph, const Grid<std:
   for (int m : moved)
     for (int q : graph.nodes[m].links)
       if (graph.nodes[m].type != NodeType::Perimeter && graph.nodes[q].type != NodeType::Perimeter)
-        forEachCellNearSegment(cells.width, cells.height, graph.nodes[m].p, graph.nodes[q].p, radius,
+        forEachCellNearSegment(cells, graph.nodes[m].p, graph.nodes[q].p, radius,
                                [&](int col, int row, double) {
                                  if (isRoadCode(cells.at(col, row)))
                                    out.push_back(static_cast<std::int64_t>(row) * cells.width + col);
@@ -81,8 +81,7 @@ std::vector<std::int64_t> cellsNearLinks(const RoadGraph& graph, const Grid<std:
 bool anyUncovered(const RoadGraph& graph, const Grid<std::uint8_t>& cells, const Surroundings& around,
                   const std::vector<std::int64_t>& candidates, double radius) {
   for (std::int64_t k : candidates) {
-    const Vec2 c(static_cast<double>(k % cells.width) + 0.5,
-                 cells.height - static_cast<double>(k / cells.width) - 0.5);
+    const Vec2 c = patchCentre(cells, static_cast<int>(k % cells.width), static_cast<int>(k / cells.width));
     bool covered = false;
     for (int a : around.index.within(c, around.coverQuery)) {
       if (graph.nodes[a].type == NodeType::Perimeter) continue;  // perimeter links are no roads

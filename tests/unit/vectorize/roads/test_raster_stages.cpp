@@ -4,6 +4,7 @@
 #include <array>
 
 #include "../test_grids.hpp"
+#include "urbanvec/core/error.hpp"
 #include "urbanvec/vectorize/blocks/raw_blocks.hpp"
 #include "urbanvec/vectorize/parcels/parcel_loading.hpp"
 #include "urbanvec/vectorize/roads/patch_cleaning.hpp"
@@ -53,6 +54,42 @@ TEST(RawBlocks, EnclosedLandIsInternalWithItsUnusedPatchesAndBorderLandIsExterna
       const int a = rb.blockOf.at(c, r), b = rb.blockOf.at(c + 1, r);
       if (a >= 0 && b >= 0) EXPECT_EQ(a, b);
     }
+}
+
+// A window (issue 22) that cuts a ring of road: the land inside reaches the window's edge, yet in the
+// whole grid the ring encloses it. With the whole grid's open-regions answer A2 makes it the internal
+// block the whole grid has, unused cells included; without it, only its residential cells form an
+// external block.
+TEST(RawBlocks, OpenRegionsGridGivesAWindowTheWholeGridsEnclosedRegions) {
+  const auto cells = drawGrid({
+      ".....",
+      ".ssss",
+      ".s.r.",
+      ".s.rr",
+      ".ssss",
+      ".....",
+  });
+  const RawBlocks cut = buildRawBlocks(cells, {});
+  ASSERT_GE(cut.blockOf.at(3, 2), 0);
+  EXPECT_FALSE(cut.blocks[cut.blockOf.at(3, 2)].internal);
+  EXPECT_EQ(cut.blocks[cut.blockOf.at(3, 2)].area, 3.0);
+  EXPECT_EQ(cut.blockOf.at(2, 2), -1);  // unused land of an open region
+
+  Grid<std::uint8_t> open(cells.width, cells.height, 1);
+  for (int r = 2; r <= 3; ++r)
+    for (int c = 2; c <= 4; ++c) open.at(c, r) = 0;  // the land inside the ring
+  RawBlockOptions options;
+  options.openRegions = &open;
+  const RawBlocks whole = buildRawBlocks(cells, options);
+  ASSERT_EQ(whole.blocks.size(), 1u);
+  EXPECT_TRUE(whole.blocks[0].internal);
+  EXPECT_EQ(whole.blocks[0].area, 6.0);
+  EXPECT_EQ(whole.blocks[0].undevelopedArea, 3.0);
+  EXPECT_EQ(whole.blockOf.at(0, 0), -1);  // outside the ring: open land either way
+
+  Grid<std::uint8_t> wrongSize(cells.width + 1, cells.height, 0);
+  options.openRegions = &wrongSize;
+  EXPECT_THROW(buildRawBlocks(cells, options), Error);
 }
 
 TEST(RawBlocks, ReservedIsExcludedOnlyWhenAsked) {
