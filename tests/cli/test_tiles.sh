@@ -88,9 +88,10 @@ driver=$!
 victim=""
 for _ in $(seq 1 200); do
   # The local cluster's workers are the driver's children; each runs its tile's vectorize as a child.
-  for v in $(pgrep -f -- "-srcwin" 2>/dev/null); do
-    w=$(ps -o ppid= -p "$v" 2>/dev/null | tr -d ' ' || true)  # the process may have ended meanwhile
-    [ -n "$w" ] && [ "$(ps -o ppid= -p "$w" 2>/dev/null | tr -d ' ')" = "$driver" ] && victim=$w
+  # Only this run's processes are looked at (other runs on the machine may have -srcwin children),
+  # and a process that ends meanwhile is simply not found.
+  for w in $(pgrep -P "$driver" 2>/dev/null || true); do
+    if pgrep -P "$w" -f -- "-srcwin" >/dev/null 2>&1; then victim=$w; fi
   done
   [ -n "$victim" ] && break
   sleep 0.1
