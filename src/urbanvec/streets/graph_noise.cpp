@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "urbanvec/core/uniform_grid.hpp"
+
 namespace urbanvec::streets {
 
 double halton(int index, int base) {
@@ -72,14 +74,9 @@ std::vector<Street> applyGraphNoise(const PlanarGraph& graph, const std::vector<
   // Midpoints of the minor edges in buckets of about two edges each.
   const double extent = std::max({hi.x - lo.x, hi.y - lo.y, 1.0});
   const double cell = std::max(extent / std::sqrt(std::max<double>(1.0, minor.size() / 2.0)), 1e-6);
-  const int nx = static_cast<int>((hi.x - lo.x) / cell) + 1, ny = static_cast<int>((hi.y - lo.y) / cell) + 1;
-  std::vector<std::vector<int>> buckets(minor.empty() ? 0 : static_cast<std::size_t>(nx) * ny);
-  for (int e : minor) {
-    const Vec2& m = mid[static_cast<std::size_t>(e)];
-    const int i = std::clamp(static_cast<int>((m.x - lo.x) / cell), 0, nx - 1);
-    const int j = std::clamp(static_cast<int>((m.y - lo.y) / cell), 0, ny - 1);
-    buckets[static_cast<std::size_t>(j) * nx + i].push_back(e);
-  }
+  UniformGrid<int> buckets;
+  if (!minor.empty()) buckets.init(lo, hi, cell);
+  for (int e : minor) buckets.insert(mid[static_cast<std::size_t>(e)], e);
   if (minor.empty())
     return [&] {
       std::vector<Street> out;
@@ -94,22 +91,19 @@ std::vector<Street> applyGraphNoise(const PlanarGraph& graph, const std::vector<
     // Nearest eligible edge by its midpoint: rings of buckets outwards until no nearer one can exist.
     int best = -1;
     double bestD = std::numeric_limits<double>::infinity();
-    const int ci = std::clamp(static_cast<int>((h.x - lo.x) / cell), 0, nx - 1);
-    const int cj = std::clamp(static_cast<int>((h.y - lo.y) / cell), 0, ny - 1);
-    for (int ring = 0; ring <= nx + ny; ++ring) {
+    const int ci = buckets.column(h.x), cj = buckets.row(h.y);
+    for (int ring = 0;; ++ring) {
       const double reach = (ring - 1) * cell;
       if (ring > 0 && reach > 0 && reach * reach > bestD) break;
-      for (int j = cj - ring; j <= cj + ring; ++j)
-        for (int i = ci - ring; i <= ci + ring; ++i) {
-          if (std::max(std::abs(i - ci), std::abs(j - cj)) != ring || i < 0 || j < 0 || i >= nx || j >= ny)
-            continue;
-          for (int e : buckets[static_cast<std::size_t>(j) * nx + i]) {
-            if (!eligible(e)) continue;
-            const Vec2 d = mid[static_cast<std::size_t>(e)] - h;
-            const double d2 = dot(d, d);
-            if (d2 < bestD || (d2 == bestD && e < best)) bestD = d2, best = e;
-          }
+      const bool any = buckets.forRing(ci, cj, ring, [&](const std::vector<int>& bucket) {
+        for (int e : bucket) {
+          if (!eligible(e)) continue;
+          const Vec2 d = mid[static_cast<std::size_t>(e)] - h;
+          const double d2 = dot(d, d);
+          if (d2 < bestD || (d2 == bestD && e < best)) bestD = d2, best = e;
         }
+      });
+      if (!any) break;
     }
     if (best < 0) break;
     const bool cut = doneFull >= full || (donePartial < partial && (index % 4) == 0);
