@@ -84,22 +84,27 @@ def build():
     return m
 
 
-if __name__ == '__main__':
+def write_model(build, algorithms, filename):
+    """Builds the model with the urbanvec provider loaded (so the model knows its children's outputs
+    and writes them) and saves it next to this script; exits with an error naming what is missing."""
     app = QgsApplication([], False)
     app.initQgis()
-    # The provider must be loaded so the model knows its children's outputs (and writes them).
     sys.path[:0] = ['/usr/share/qgis/python/plugins', os.path.join(HERE, '..', '..', 'plugin')]
     from processing.core.Processing import Processing
     Processing.initialize()
     from urbanvec.provider import UrbanvecProvider
     provider = UrbanvecProvider()
     QgsApplication.processingRegistry().addProvider(provider)
-    missing = [a for a in ('gridify', 'vectorize', 'evaluate') if provider.algorithm(a) is None]
+    missing = [a for a in algorithms if provider.algorithm(a) is None]
     if missing:
         sys.exit('ERROR: the urbanvec program on PATH lacks ' + ', '.join(missing))
     model = build()
-    path = os.path.join(HERE, 'city_from_osm.model3')
+    path = os.path.join(HERE, filename)
     if not model.toFile(path):
         sys.exit('ERROR: cannot write ' + path)
     print(path)
     os._exit(0)
+
+
+if __name__ == '__main__':
+    write_model(build, ('gridify', 'vectorize', 'evaluate'), 'city_from_osm.model3')

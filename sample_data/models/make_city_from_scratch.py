@@ -10,7 +10,6 @@ import os
 import sys
 
 from qgis.core import (
-    QgsApplication,
     QgsProcessingModelAlgorithm,
     QgsProcessingModelChildParameterSource as Source,
     QgsProcessingModelParameter,
@@ -20,7 +19,7 @@ from qgis.PyQt.QtCore import QPointF
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from make_city_from_osm import child  # noqa: E402  (the same child-algorithm helper)
+from make_city_from_osm import child, write_model  # noqa: E402  (the same helpers)
 
 
 def build():
@@ -70,20 +69,4 @@ def build():
 
 
 if __name__ == '__main__':
-    app = QgsApplication([], False)
-    app.initQgis()
-    sys.path[:0] = ['/usr/share/qgis/python/plugins', os.path.join(HERE, '..', '..', 'plugin')]
-    from processing.core.Processing import Processing
-    Processing.initialize()
-    from urbanvec.provider import UrbanvecProvider
-    provider = UrbanvecProvider()
-    QgsApplication.processingRegistry().addProvider(provider)
-    missing = [a for a in ('boundary', 'streets', 'gridify', 'vectorize') if provider.algorithm(a) is None]
-    if missing:
-        sys.exit('ERROR: the urbanvec program on PATH lacks ' + ', '.join(missing))
-    model = build()
-    path = os.path.join(HERE, 'city_from_scratch.model3')
-    if not model.toFile(path):
-        sys.exit('ERROR: cannot write ' + path)
-    print(path)
-    os._exit(0)
+    write_model(build, ('boundary', 'streets', 'gridify', 'vectorize'), 'city_from_scratch.model3')
