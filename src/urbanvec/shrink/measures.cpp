@@ -137,6 +137,17 @@ AngleStats intersectionAngles(const std::map<int, std::vector<int>>& adj, const 
   return s;
 }
 
+/// Number and mean area of a planar graph's bounded faces (its blocks).
+std::pair<int, double> faceAreas(const PlanarGraph& g) {
+  double total = 0.0;
+  int count = 0;
+  for (const PlanarGraph::Face& f : g.boundedFaces(1e-6)) {
+    total += f.twiceSignedArea / 2.0;
+    ++count;
+  }
+  return {count, count ? total / count : 0.0};
+}
+
 std::pair<int, double> blockAreas(const Edges& edges, const std::vector<Vec2>& pos) {
   PlanarGraph g;
   std::map<int, int> id;
@@ -145,13 +156,7 @@ std::pair<int, double> blockAreas(const Edges& edges, const std::vector<Vec2>& p
       if (!id.count(n)) id[n] = g.addNode(pos[static_cast<size_t>(n)]);
   for (const auto& [a, b] : edges) g.addEdge(id[a], id[b]);
   g.sortRotations();
-  double total = 0.0;
-  int count = 0;
-  for (const PlanarGraph::Face& f : g.boundedFaces(1e-6)) {
-    total += f.twiceSignedArea / 2.0;
-    ++count;
-  }
-  return {count, count ? total / count : 0.0};
+  return faceAreas(g);
 }
 
 std::vector<std::pair<Vec2, Vec2>> segmentsOf(const Edges& edges, const std::vector<Vec2>& pos) {
@@ -286,11 +291,7 @@ ShrinkMeasures measureShrink(const MeasureInput& in) {
       for (int n : way) l.push_back(in.before[static_cast<size_t>(n)]);
       if (l.size() >= 2) lines.push_back(std::move(l));
     }
-    const PlanarGraph city = PlanarGraph::fromLines(lines, 1e-6);
-    double total = 0.0;
-    for (const PlanarGraph::Face& f : city.boundedFaces(1e-6))
-      total += f.twiceSignedArea / 2.0, ++m.blocksCity;
-    m.meanBlockAreaCity = m.blocksCity ? total / m.blocksCity : 0.0;
+    std::tie(m.blocksCity, m.meanBlockAreaCity) = faceAreas(PlanarGraph::fromLines(lines, 1e-6));
   }
   return m;
 }
