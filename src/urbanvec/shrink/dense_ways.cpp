@@ -6,6 +6,7 @@
 #include <map>
 
 #include "urbanvec/core/segment_contact.hpp"
+#include "urbanvec/core/uniform_grid.hpp"
 
 namespace urbanvec::shrink {
 
@@ -58,19 +59,19 @@ class SegmentIndex {
   };
 
   SegmentIndex(const std::vector<Vec2>& pos, double minX, double minY, double maxX, double maxY, double cell)
-      : pos_(pos), x0_(minX), y0_(minY), cell_(cell) {
-    nx_ = std::clamp(static_cast<int>((maxX - minX) / cell) + 1, 1, 4096);
-    ny_ = std::clamp(static_cast<int>((maxY - minY) / cell) + 1, 1, 4096);
-    cell_ = std::max({cell, (maxX - minX) / nx_ * 1.000001, (maxY - minY) / ny_ * 1.000001, 1e-9});
-    grid_.resize(static_cast<size_t>(nx_) * static_cast<size_t>(ny_));
+      : pos_(pos) {
+    // At most 4096 buckets a side: a larger extent gets larger buckets.
+    const int nx = std::clamp(static_cast<int>((maxX - minX) / cell) + 1, 1, 4096);
+    const int ny = std::clamp(static_cast<int>((maxY - minY) / cell) + 1, 1, 4096);
+    grid_.init({minX, minY}, {maxX, maxY},
+               std::max({cell, (maxX - minX) / nx * 1.000001, (maxY - minY) / ny * 1.000001, 1e-9}));
   }
 
   int add(int a, int b, int way, int k) {
     const int id = static_cast<int>(segs_.size());
     segs_.push_back({a, b, way, k, true});
     stamp_.push_back(0);
-    forCells(pos_[static_cast<size_t>(a)], pos_[static_cast<size_t>(b)],
-             [&](size_t c) { grid_[c].push_back(id); });
+    grid_.insert(pos_[static_cast<size_t>(a)], pos_[static_cast<size_t>(b)], id);
     return id;
   }
   void kill(int id) { segs_[static_cast<size_t>(id)].alive = false; }
@@ -79,7 +80,6 @@ class SegmentIndex {
   /// inside the ring `ring` (point ids, implicitly closed): dropping the ring's inner points would move
   /// the way to the other side of it.
   bool pocketHolds(const std::vector<int>& ring, int way, int k0, int k1) {
-    ++query_;
     double minX = 1e300, minY = 1e300, maxX = -1e300, maxY = -1e300;
     for (int n : ring) {
       const Vec2 p = pos_[static_cast<size_t>(n)];
@@ -97,74 +97,52 @@ class SegmentIndex {
       }
       return in;
     };
-    bool hit = false;
-    forCells({minX, minY}, {maxX, maxY}, [&](size_t c) {
-      if (hit) return;
-      for (int id : grid_[c]) {
-        if (stamp_[static_cast<size_t>(id)] == query_) continue;
-        stamp_[static_cast<size_t>(id)] = query_;
-        const Seg& s = segs_[static_cast<size_t>(id)];
-        if (!s.alive || (s.way == way && s.k >= k0 && s.k < k1)) continue;
-        if (inside(s.a) || inside(s.b)) {
-          hit = true;
-          return;
-        }
-      }
-    });
-    return hit;
+    return anyLive({minX, minY}, {maxX, maxY}, way, k0, k1,
+                   [&](const Seg& s) { return inside(s.a) || inside(s.b); });
   }
 
   /// True when segment a-b shares a point with a live segment other than way `way`'s dense segments
   /// k in [k0, k1), apart from a shared end point id.
   bool blocked(int a, int b, int way, int k0, int k1, bool sameSegmentOk = false) {
-    ++query_;
     const Vec2 p = pos_[static_cast<size_t>(a)], q = pos_[static_cast<size_t>(b)];
-    bool hit = false;
-    forCells(p, q, [&](size_t c) {
-      if (hit) return;
-      for (int id : grid_[c]) {
+    return anyLive(p, q, way, k0, k1, [&](const Seg& s) {
+      if (s.a == a || s.a == b || s.b == a || s.b == b) {
+        // Sharing an end point: only a collinear overlap beyond it is a conflict.
+        const int shared = (s.a == a || s.b == a) ? a : b;
+        const int other = s.a == shared ? s.b : s.a;
+        const int mine = shared == a ? b : a;
+        const Vec2 o = pos_[static_cast<size_t>(other)], m = pos_[static_cast<size_t>(mine)],
+                   sp = pos_[static_cast<size_t>(shared)];
+        if (other != mine && orientation(sp, m, o) == 0 && dot(m - sp, o - sp) > 0) return true;
+        return other == mine && !sameSegmentOk;  // the same segment twice
+      }
+      return segmentContact(p, q, pos_[static_cast<size_t>(s.a)], pos_[static_cast<size_t>(s.b)]) !=
+             SegmentContact::None;
+    });
+  }
+
+ private:
+  /// True when `hit` holds for a live segment in the buckets of the box lo-hi, each looked at once,
+  /// leaving out way `way`'s dense segments k in [k0, k1).
+  template <class Hit>
+  bool anyLive(const Vec2& lo, const Vec2& hi, int way, int k0, int k1, Hit hit) {
+    ++query_;
+    bool found = false;
+    grid_.forBox(lo, hi, [&](const std::vector<int>& bucket) {
+      for (std::size_t i = 0; !found && i < bucket.size(); ++i) {
+        const int id = bucket[i];
         if (stamp_[static_cast<size_t>(id)] == query_) continue;
         stamp_[static_cast<size_t>(id)] = query_;
         const Seg& s = segs_[static_cast<size_t>(id)];
         if (!s.alive || (s.way == way && s.k >= k0 && s.k < k1)) continue;
-        if (s.a == a || s.a == b || s.b == a || s.b == b) {
-          // Sharing an end point: only a collinear overlap beyond it is a conflict.
-          const int shared = (s.a == a || s.b == a) ? a : b;
-          const int other = s.a == shared ? s.b : s.a;
-          const int mine = shared == a ? b : a;
-          const Vec2 o = pos_[static_cast<size_t>(other)], m = pos_[static_cast<size_t>(mine)],
-                     sp = pos_[static_cast<size_t>(shared)];
-          if (other != mine && orientation(sp, m, o) == 0 && dot(m - sp, o - sp) > 0) hit = true;
-          if (other == mine && !sameSegmentOk) hit = true;  // the same segment twice
-          if (hit) return;
-          continue;
-        }
-        if (segmentContact(p, q, pos_[static_cast<size_t>(s.a)], pos_[static_cast<size_t>(s.b)]) !=
-            SegmentContact::None) {
-          hit = true;
-          return;
-        }
+        found = hit(s);
       }
     });
-    return hit;
+    return found;
   }
-
- private:
-  template <class F>
-  void forCells(const Vec2& a, const Vec2& b, F&& f) {
-    const int cx0 = cx(std::min(a.x, b.x)), cx1 = cx(std::max(a.x, b.x));
-    const int cy0 = cy(std::min(a.y, b.y)), cy1 = cy(std::max(a.y, b.y));
-    for (int y = cy0; y <= cy1; ++y)
-      for (int x = cx0; x <= cx1; ++x)
-        f(static_cast<size_t>(y) * static_cast<size_t>(nx_) + static_cast<size_t>(x));
-  }
-  int cx(double x) const { return std::clamp(static_cast<int>(std::floor((x - x0_) / cell_)), 0, nx_ - 1); }
-  int cy(double y) const { return std::clamp(static_cast<int>(std::floor((y - y0_) / cell_)), 0, ny_ - 1); }
 
   const std::vector<Vec2>& pos_;
-  double x0_, y0_, cell_;
-  int nx_ = 1, ny_ = 1;
-  std::vector<std::vector<int>> grid_;
+  UniformGrid<int> grid_;
   std::vector<Seg> segs_;
   std::vector<unsigned> stamp_;
   unsigned query_ = 0;
