@@ -28,6 +28,17 @@ MultiPolygon square(double x0, double y0, double side) {
   return {{{{x0, y0}, {x0 + side, y0}, {x0 + side, y0 + side}, {x0, y0 + side}, {x0, y0}}, {}}};
 }
 
+/// A scene of one grid element at `degrees` (counter-clockwise from east) inside `boundary`.
+StreetsInput oneGridElement(const MultiPolygon& boundary, const Vec2& at, double degrees) {
+  StreetsInput in;
+  in.boundary = boundary;
+  DesignElement e;
+  e.position = at;
+  e.angle = degrees * M_PI / 180.0;
+  in.design = {e};
+  return in;
+}
+
 StreetsOptions quiet() {
   StreetsOptions o;
   o.field.noiseAmplitude = 0.0;
@@ -125,12 +136,8 @@ TEST(TensorField, Eq3BlendingIsLocalNearEachElement) {
 TEST(Streets, GridSceneIsAGridOfFourWayCrossings) {
   // One grid element at 30 degrees, major roads only, no noise: both families straight at 30 and 120
   // degrees, spaced d_sep; interior crossings are 4-way.
-  StreetsInput in;
-  in.boundary = square(0, 0, 3000);
-  DesignElement e;
-  e.position = {1500, 1500};
-  e.angle = 30.0 * M_PI / 180.0;
-  in.design = {e};
+  const StreetsInput in = oneGridElement(square(0, 0, 3000), {1500, 1500}, 30.0);
+  const DesignElement& e = in.design.front();
   StreetsOptions o = quiet();
   o.trace.majorDsep = 200;
   o.trace.minorDsep = 100;
@@ -172,12 +179,7 @@ TEST(Streets, NoStreetIsSeededOnTheBoundary) {
   // touches the boundary except at its own ends.
   const Ring kite{{1000, 0}, {2100, 900}, {1000, 2000}, {-100, 1100}, {1000, 0}};
   auto cornersOnBoundary = [&](double edgeSeedRatio) {
-    StreetsInput in;
-    in.boundary = {{kite, {}}};
-    DesignElement e;
-    e.position = {1000, 1000};
-    e.angle = 10.0 * M_PI / 180.0;
-    in.design = {e};
+    const StreetsInput in = oneGridElement({{kite, {}}}, {1000, 1000}, 10.0);
     StreetsOptions o = quiet();
     o.trace.majorDsep = 150;
     o.trace.minorRoads = false;
