@@ -35,6 +35,18 @@ prepare_monaco() {
   ogr2ogr -q -overwrite -f GPKG -lco GEOMETRY_NAME=geom -nln roads -where "highway IN ($MAIN)" "$d/main.gpkg" "$d/real.gpkg" roads
 }
 
+# Hold-out halves of Monaco (its quarters, admin_level 10): the same roads, water and real network,
+# the boundary only the west (Fontvieille, Monaco-Ville, La Condamine) or the east (Monte-Carlo,
+# Larvotto, La Rousse); defaults are set on neither half alone, so each checks the other.
+prepare_monaco_part() {
+  local part=$1 names=$2 d="$OUT/$1"
+  mkdir -p "$d"
+  ogr2ogr -q -overwrite -f GPKG -lco GEOMETRY_NAME=geom -t_srs EPSG:32632 -dialect sqlite -nln boundary -nlt MULTIPOLYGON \
+    -sql "SELECT ST_Union(geometry) AS geometry FROM multipolygons WHERE admin_level = '10' AND name IN ($names)" \
+    "$d/boundary.gpkg" "$SRC/monaco.osm.pbf"
+  cp "$OUT/monaco/water.gpkg" "$OUT/monaco/real.gpkg" "$OUT/monaco/main.gpkg" "$d/"
+}
+
 prepare_bubenec() {
   local d="$OUT/bubenec"
   mkdir -p "$d"
@@ -165,8 +177,12 @@ PY
 }
 
 prepare_monaco
+prepare_monaco_part monaco_west "'Fontvieille','Monaco-Ville','La Condamine'"
+prepare_monaco_part monaco_east "'Monte-Carlo','Larvotto','La Rousse'"
 prepare_bubenec
 run_city monaco EPSG:32632
+run_city monaco_west EPSG:32632
+run_city monaco_east EPSG:32632
 run_city bubenec EPSG:32633
 
 $PY - "$OUT" <<'PY'
@@ -177,7 +193,7 @@ keys = [("orientation_entropy", "H (nats)", ("abs", 0.25)), ("share_3way", "3-wa
         ("circuity", "circuity", ("abs", 0.03)), ("median_edge_length", "median edge (m)", ("rel", 0.30)),
         ("intersection_density", "intersections / km²", ("rel", 0.30)), ("average_degree", "average degree", None),
         ("orientation_order", "orientation order φ", None), ("edges", "edges", None), ("nodes", "nodes", None)]
-for city in ("monaco", "bubenec"):
+for city in ("monaco", "bubenec", "monaco_west", "monaco_east"):
     g = json.load(open(f"{out}/{city}/generated.json")); r = json.load(open(f"{out}/{city}/real.json"))
     kept = json.load(open(f"{out}/{city}/kept.json"))
     name, area, mainlen, dmaj, dmin, shrink, secs = open(f"{out}/{city}/run.txt").read().split()

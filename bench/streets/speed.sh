@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Speed of `urbanvec streets` (issue 18 "Speed"): synthetic square cities of 25 km² and 400 km² (one
 # grid and one radial element, major d_sep 200 m, minor 100 m, default noise and graph noise), wall
-# time and peak memory under /usr/bin/time, and the network's size from street-metrics. Targets:
+# time, CPU time (user + sys: the machine is shared, so CPU is the figure to compare) and peak memory
+# under /usr/bin/time, and the network's size from street-metrics. Targets:
 # 25 km² (about 5k intersections) <= 0.5 s, 400 km² <= 10 s, time linear in area.
 # usage: bench/streets/speed.sh [THREADS]   (default 2); URBANVEC overrides build/bin/urbanvec
 set -euo pipefail
@@ -10,8 +11,8 @@ URBANVEC=${URBANVEC:-$ROOT/build/bin/urbanvec}
 THREADS=${1:-2}
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
-echo "| area | threads | wall (s) | peak RSS (MB) | streets | nodes | 3-way share |"
-echo "|---|---|---|---|---|---|---|"
+echo "| area | threads | wall (s) | CPU user+sys (s) | peak RSS (MB) | streets | nodes | 3-way share |"
+echo "|---|---|---|---|---|---|---|---|"
 for side in 5000 10000 20000; do
   x1=$((400000 + side)) y1=$((5500000 + side))
   printf 'id,WKT\n1,"POLYGON((400000 5500000,%d 5500000,%d %d,400000 %d,400000 5500000))"\n' "$x1" "$x1" "$y1" "$y1" >"$WORK/b.csv"
@@ -19,11 +20,11 @@ for side in 5000 10000 20000; do
   printf '{"elements": [{"kind": "grid", "x": %d, "y": %d, "angle": 15},
     {"kind": "radial", "x": %d, "y": %d, "size": 300}]}\n' $((400000 + side / 3)) $((5500000 + side / 3)) \
     $((400000 + 2 * side / 3)) $((5500000 + 2 * side / 3)) >"$WORK/d$side.json"
-  /usr/bin/time -f "%e %M" -o "$WORK/time" "$URBANVEC" streets -q -threads "$THREADS" -boundary "$WORK/b$side.gpkg" \
+  /usr/bin/time -f "%e %U %S %M" -o "$WORK/time" "$URBANVEC" streets -q -threads "$THREADS" -boundary "$WORK/b$side.gpkg" \
     -design "$WORK/d$side.json" -dsep-major 200 "$WORK/s$side.gpkg"
-  read -r wall rss <"$WORK/time"
+  read -r wall usr sys rss <"$WORK/time"
   "$URBANVEC" street-metrics -q -overwrite -layer streets -json "$WORK/m.json" "$WORK/s$side.gpkg"
   streets=$(ogrinfo -ro -so "$WORK/s$side.gpkg" streets | sed -n 's/^Feature Count: //p')
-  printf '| %d km² | %s | %s | %.0f | %s | %s | %.2f |\n' $((side * side / 1000000)) "$THREADS" "$wall" \
+  printf '| %d km² | %s | %s | %.2f | %.0f | %s | %s | %.2f |\n' $((side * side / 1000000)) "$THREADS" "$wall" "$(echo "$usr + $sys" | bc -l)" \
     "$(echo "$rss / 1024" | bc -l)" "$streets" "$(jq .nodes "$WORK/m.json")" "$(jq .share_3way "$WORK/m.json")"
 done

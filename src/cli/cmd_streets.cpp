@@ -114,6 +114,13 @@ app::CommandSpec spec() {
                   .byDefault(app::numberText(d.trace.minLengthRatio))
                   .atLeast(0)
                   .isAdvanced());
+  o.push_back(
+      option("-edge-seed-ratio", ValueType::Real, "<ratio>",
+             "Seeds closer than this x the integration step to the boundary or the water are not used "
+             "(a street seeded on the edge meets the one clipped there at a corner); 0 = off.")
+          .byDefault(app::numberText(d.trace.edgeSeedRatio))
+          .atLeast(0)
+          .isAdvanced());
   o.push_back(option("-step", ValueType::Real, "<metres>", "Integration step; default half a field cell.")
                   .withUnit("m")
                   .atLeast(1e-3)
@@ -169,6 +176,12 @@ app::CommandSpec spec() {
   o.push_back(option("-cut-share", ValueType::Real, "<share>",
                      "Graph noise: share of minor segments cut back to a dead-end stub.")
                   .byDefault(app::numberText(d.noise.partialShare))
+                  .atLeast(0)
+                  .atMost(1));
+  o.push_back(option("-bend-share", ValueType::Real, "<share>",
+                     "Graph noise: share of minor segments deleted at a T-junction whose two other streets "
+                     "then meet at a turn of at least 45 degrees, so the street turns the corner there.")
+                  .byDefault(app::numberText(d.noise.bendShare))
                   .atLeast(0)
                   .atMost(1));
   o.push_back(app::seedOption());
@@ -325,6 +338,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   options.field.seed = static_cast<std::uint64_t>(args.integer("-seed"));
   options.noise.fullShare = args.real("-delete-share");
   options.noise.partialShare = args.real("-cut-share");
+  options.noise.bendShare = args.real("-bend-share");
   options.noise.startIndex = 1 + static_cast<int>(args.integer("-seed") % 100000);
   options.field.noiseAmplitude = args.real("-noise") * M_PI / 180.0;
   if (args.given("-noise-wavelength")) options.field.noiseWavelength = args.real("-noise-wavelength");
@@ -337,6 +351,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
                         args.str("-dsep-major"));
   options.trace.lookaheadRatio = args.real("-lookahead-ratio");
   options.trace.minLengthRatio = args.real("-min-length-ratio");
+  options.trace.edgeSeedRatio = args.real("-edge-seed-ratio");
   if (args.given("-step")) options.trace.step = args.real("-step");
   if (args.given("-field-cell")) options.field.cellSize = args.real("-field-cell");
   options.field.decayRadiusShare = args.real("-decay-share");

@@ -189,7 +189,7 @@ StreetNetwork generateStreets(const StreetsInput& input, const StreetsOptions& o
   reportProgress(progress, 0.85, "noding");
   // §13.6 graph noise: deletions and cut-backs create no crossing, so nothing is noded again.
   std::vector<Street> pieces;
-  if (options.noise.fullShare > 0.0 || options.noise.partialShare > 0.0) {
+  if (options.noise.fullShare > 0.0 || options.noise.partialShare > 0.0 || options.noise.bendShare > 0.0) {
     pieces = applyGraphNoise(graph, edgeLevel, options.noise);
   } else {
     for (int e = 0; e < static_cast<int>(graph.edgeCount()); ++e)

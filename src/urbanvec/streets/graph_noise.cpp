@@ -84,11 +84,9 @@ std::vector<Street> applyGraphNoise(const PlanarGraph& graph, const std::vector<
         out.push_back({graph.edge(e).line, edgeLevel[static_cast<std::size_t>(e)], 0});
       return out;
     }();
-  int index = options.startIndex, doneFull = 0, donePartial = 0;
-  const int maxTries = 20 * static_cast<int>(minor.size()) + 100;
-  for (int tries = 0; tries < maxTries && (doneFull < full || donePartial < partial); ++tries, ++index) {
-    const Vec2 h{lo.x + halton(index, 2) * (hi.x - lo.x), lo.y + halton(index, 3) * (hi.y - lo.y)};
-    // Nearest eligible edge by its midpoint: rings of buckets outwards until no nearer one can exist.
+  // The nearest edge to a Halton point (by midpoint) among those `ok` accepts: rings of buckets
+  // outwards until no nearer one can exist; -1 when none is left.
+  auto nearestTo = [&](const Vec2& h, const auto& ok) {
     int best = -1;
     double bestD = std::numeric_limits<double>::infinity();
     const int ci = buckets.column(h.x), cj = buckets.row(h.y);
@@ -97,7 +95,7 @@ std::vector<Street> applyGraphNoise(const PlanarGraph& graph, const std::vector<
       if (ring > 0 && reach > 0 && reach * reach > bestD) break;
       const bool any = buckets.forRing(ci, cj, ring, [&](const std::vector<int>& bucket) {
         for (int e : bucket) {
-          if (!eligible(e)) continue;
+          if (!ok(e)) continue;
           const Vec2 d = mid[static_cast<std::size_t>(e)] - h;
           const double d2 = dot(d, d);
           if (d2 < bestD || (d2 == bestD && e < best)) bestD = d2, best = e;
@@ -105,6 +103,15 @@ std::vector<Street> applyGraphNoise(const PlanarGraph& graph, const std::vector<
       });
       if (!any) break;
     }
+    return best;
+  };
+  auto halton2 = [&](int index) {
+    return Vec2{lo.x + halton(index, 2) * (hi.x - lo.x), lo.y + halton(index, 3) * (hi.y - lo.y)};
+  };
+  int index = options.startIndex, doneFull = 0, donePartial = 0;
+  const int maxTries = 20 * static_cast<int>(minor.size()) + 100;
+  for (int tries = 0; tries < maxTries && (doneFull < full || donePartial < partial); ++tries, ++index) {
+    const int best = nearestTo(halton2(index), eligible);
     if (best < 0) break;
     const bool cut = doneFull >= full || (donePartial < partial && (index % 4) == 0);
     --degree[static_cast<std::size_t>(graph.edge(best).a)];
@@ -121,6 +128,42 @@ std::vector<Street> applyGraphNoise(const PlanarGraph& graph, const std::vector<
       fate[static_cast<std::size_t>(best)] = Delete;
       ++doneFull;
     }
+  }
+  // Corners: a minor edge is deleted at a T-junction whose two other streets then meet at a turn, so
+  // the street turns the corner there (a degree-2 bend) instead of running on; its other end keeps
+  // degree >= 2. Only whole, live street edges count at the junction.
+  const double turnCos = -std::cos(options.minTurnDegrees * M_PI / 180.0);
+  auto awayFrom = [&](int f, int n) {
+    const PlanarGraph::Edge& ed = graph.edge(f);
+    const Vec2 d = ed.a == n ? ed.line.back() - ed.line.front() : ed.line.front() - ed.line.back();
+    return d / std::max(length(d), 1e-300);
+  };
+  auto turnsAt = [&](int e, int n) {
+    if (degree[static_cast<std::size_t>(n)] != 3) return false;
+    std::vector<Vec2> rest;
+    for (int f : graph.node(n).edges) {
+      const auto k = static_cast<std::size_t>(f);
+      if (f == e || fate[k] == Delete || edgeLevel[k] == StreetLevel::Outline) continue;
+      if (fate[k] == Cut && (cutFromB[k] ? graph.edge(f).b : graph.edge(f).a) != n) continue;
+      if (fate[k] == Cut || graph.edge(f).a == graph.edge(f).b) return false;
+      rest.push_back(awayFrom(f, n));
+    }
+    return rest.size() == 2 && dot(rest[0], rest[1]) > turnCos;
+  };
+  auto bendable = [&](int e) {
+    const PlanarGraph::Edge& ed = graph.edge(e);
+    if (fate[static_cast<std::size_t>(e)] != Keep || ed.a == ed.b) return false;
+    return (turnsAt(e, ed.a) && degree[static_cast<std::size_t>(ed.b)] >= 3) ||
+           (turnsAt(e, ed.b) && degree[static_cast<std::size_t>(ed.a)] >= 3);
+  };
+  const int bends = static_cast<int>(std::lround(options.bendShare * minor.size()));
+  for (int tries = 0, done = 0; tries < maxTries && done < bends; ++tries, ++index) {
+    const int best = nearestTo(halton2(index), bendable);
+    if (best < 0) break;
+    fate[static_cast<std::size_t>(best)] = Delete;
+    --degree[static_cast<std::size_t>(graph.edge(best).a)];
+    --degree[static_cast<std::size_t>(graph.edge(best).b)];
+    ++done;
   }
   std::vector<Street> out;
   for (int e = 0; e < edges; ++e) {

@@ -24,11 +24,21 @@ struct GraphNoiseOptions {
   /// Only segments whose two ends have at least this street degree are touched: 4 = between two
   /// crossings, so a deletion turns two crossings into T-junctions and never a T-junction into a bend.
   int minEndDegree = 4;
+  /// Share of the minor segments deleted at a T-junction so that the two streets left there meet at a
+  /// turn: the street turns the corner (a degree-2 bend) instead of running on. Real streets turn
+  /// corners without a junction; a traced network has none, which keeps its circuity near 1
+  /// [INFERENCE: the spec's "streets that stop and restart, or connect slightly irregularly" (§13.6);
+  /// no value is given; 0 = off].
+  double bendShare = 0.1;
+  /// A T-junction counts as a turn when its two remaining streets deviate from straight by at least
+  /// this (degrees).
+  double minTurnDegrees = 45.0;
 };
 
 /// The pieces that remain: each graph edge's line and level, minus the deleted ones, with cut-back
 /// edges shortened. Only minor edges whose two ends have degree >= minEndDegree at that moment are
-/// touched, so no street is cut off from the network by a full deletion.
+/// touched, so no street is cut off from the network by a full deletion. Then bendShare of the minor
+/// edges go at T-junctions that become corners (their other end keeps degree >= 2: no dead end).
 std::vector<Street> applyGraphNoise(const PlanarGraph& graph, const std::vector<StreetLevel>& edgeLevel,
                                     const GraphNoiseOptions& options);
 

@@ -267,7 +267,10 @@ class Tracer {
   }
 
   bool validSeed(const Vec2& s, StreetLevel l, int family) const {
-    return onLand(s) && !tooClose(l, family, s, dsep(l, s) * (1.0 - 1e-6));
+    if (!onLand(s) || tooClose(l, family, s, dsep(l, s) * (1.0 - 1e-6))) return false;
+    const double margin = o_.edgeSeedRatio * h_;
+    return !(margin > 0.0) || ((land_.empty() || land_.distanceToEdge(s, margin) >= margin) &&
+                               water_.distanceToEdge(s, margin) >= margin);
   }
 
   /// Traces both directions from s and joins them through s.

@@ -45,6 +45,10 @@ struct TraceOptions {
   double parkFactor = 2.0;
   /// Seed priority ω = e^(−d_b / λ) with λ = this × d_sep (spec §9.3: λ_ω = d_sep).
   double priorityScaleRatio = 1.0;
+  /// Seeds closer than ratio × the integration step to the boundary or the water's edge are not
+  /// used: a street seeded on the edge (at the end of a street clipped there) leaves it at a right
+  /// angle, and the two meet at a corner on the edge that no junction explains [INFERENCE; 0 = off].
+  double edgeSeedRatio = 1.0;
   /// Trace minor roads (the second level).
   bool minorRoads = true;
   /// Minor-road seeds lie this far (m) beside the major road they start from, so that they begin in

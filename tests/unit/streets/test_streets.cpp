@@ -28,11 +28,23 @@ MultiPolygon square(double x0, double y0, double side) {
   return {{{{x0, y0}, {x0 + side, y0}, {x0 + side, y0 + side}, {x0, y0 + side}, {x0, y0}}, {}}};
 }
 
+/// A scene of one grid element at `degrees` (counter-clockwise from east) inside `boundary`.
+StreetsInput oneGridElement(const MultiPolygon& boundary, const Vec2& at, double degrees) {
+  StreetsInput in;
+  in.boundary = boundary;
+  DesignElement e;
+  e.position = at;
+  e.angle = degrees * M_PI / 180.0;
+  in.design = {e};
+  return in;
+}
+
 StreetsOptions quiet() {
   StreetsOptions o;
   o.field.noiseAmplitude = 0.0;
   o.noise.fullShare = 0.0;
   o.noise.partialShare = 0.0;
+  o.noise.bendShare = 0.0;
   return o;
 }
 
@@ -124,12 +136,8 @@ TEST(TensorField, Eq3BlendingIsLocalNearEachElement) {
 TEST(Streets, GridSceneIsAGridOfFourWayCrossings) {
   // One grid element at 30 degrees, major roads only, no noise: both families straight at 30 and 120
   // degrees, spaced d_sep; interior crossings are 4-way.
-  StreetsInput in;
-  in.boundary = square(0, 0, 3000);
-  DesignElement e;
-  e.position = {1500, 1500};
-  e.angle = 30.0 * M_PI / 180.0;
-  in.design = {e};
+  const StreetsInput in = oneGridElement(square(0, 0, 3000), {1500, 1500}, 30.0);
+  const DesignElement& e = in.design.front();
   StreetsOptions o = quiet();
   o.trace.majorDsep = 200;
   o.trace.minorDsep = 100;
@@ -161,6 +169,34 @@ TEST(Streets, GridSceneIsAGridOfFourWayCrossings) {
       {}, square(300, 300, 2400));
   EXPECT_NEAR(m.medianEdgeLength, 200.0, 10.0);
   EXPECT_NEAR(m.orientationEntropy, std::log(4.0), 1e-9);
+}
+
+TEST(Streets, NoStreetIsSeededOnTheBoundary) {
+  // A grid element at 10 degrees in a slanted boundary (a kite): every street is clipped at the
+  // boundary, and the seeds placed along it start at that clipped end, which lies on the edge up to
+  // rounding. A street of the other family traced from there meets the clipped one at a right-angle
+  // corner on the boundary, merged into one street through it. With the edge-seed rule no street
+  // touches the boundary except at its own ends.
+  const Ring kite{{1000, 0}, {2100, 900}, {1000, 2000}, {-100, 1100}, {1000, 0}};
+  auto cornersOnBoundary = [&](double edgeSeedRatio) {
+    const StreetsInput in = oneGridElement({{kite, {}}}, {1000, 1000}, 10.0);
+    StreetsOptions o = quiet();
+    o.trace.majorDsep = 150;
+    o.trace.minorRoads = false;
+    o.trace.edgeSeedRatio = edgeSeedRatio;
+    const StreetNetwork net = generateStreets(in, o);
+    int corners = 0;
+    for (const StreetEdge& s : net.streets)
+      for (std::size_t i = 1; i + 1 < s.line.size(); ++i) {
+        double d = 1e300;
+        for (std::size_t k = 0; k + 1 < kite.size(); ++k)
+          d = std::min(d, distanceToSegment(s.line[i], kite[k], kite[k + 1]));
+        corners += d < 1e-6;
+      }
+    return corners;
+  };
+  EXPECT_GT(cornersOnBoundary(0.0), 0);
+  EXPECT_EQ(cornersOnBoundary(1.0), 0);
 }
 
 TEST(Streets, NoStreetInWaterAllInsideBoundaryEveryCrossingANode) {
@@ -300,6 +336,7 @@ TEST(GraphNoise, HaltonAndCounts) {
   GraphNoiseOptions o;
   o.fullShare = 0.1;
   o.partialShare = 0.0;
+  o.bendShare = 0.0;
   const std::vector<Street> kept = applyGraphNoise(g, levels, o);
   EXPECT_EQ(g.edgeCount() - kept.size(), static_cast<std::size_t>(std::lround(0.1 * g.edgeCount())));
   const StreetMetrics m = measureStreets(
@@ -311,6 +348,57 @@ TEST(GraphNoise, HaltonAndCounts) {
       {});
   EXPECT_GT(m.share3Way, 0.2);
   EXPECT_NEAR(m.shareDeadEnd * m.nodes, 40.0, 1e-9);  // only the 40 original ends are dead ends
+}
+
+TEST(GraphNoise, BendsTurnTJunctionsIntoCorners) {
+  // The 10 x 10 grid of minor streets after 10 % deletions has T-junctions but only straight edges
+  // (circuity exactly 1); bends delete an arm of a T so the two streets left there meet at a right
+  // angle: degree-2 corners, edges that turn, circuity above 1, and no new dead end.
+  std::vector<LineString> lines;
+  for (int i = 0; i < 10; ++i) {
+    lines.push_back({{i * 100.0, -50}, {i * 100.0, 950}});
+    lines.push_back({{-50, i * 100.0}, {950, i * 100.0}});
+  }
+  const PlanarGraph g = PlanarGraph::fromLines(lines);
+  const std::vector<StreetLevel> levels(g.edgeCount(), StreetLevel::Minor);
+  auto measure = [&](double bendShare, std::size_t* removed, int* corners) {
+    GraphNoiseOptions o;
+    o.fullShare = 0.1;
+    o.partialShare = 0.0;
+    o.bendShare = bendShare;
+    const std::vector<Street> kept = applyGraphNoise(g, levels, o);
+    *removed = g.edgeCount() - kept.size();
+    std::vector<LineString> l;
+    for (const Street& s : kept) l.push_back(s.line);
+    // Corners: degree-2 nodes whose two edges meet at a right angle.
+    const PlanarGraph k = PlanarGraph::fromLines(l);
+    *corners = 0;
+    for (int n = 0; n < static_cast<int>(k.nodeCount()); ++n) {
+      if (k.degree(n) != 2) continue;
+      Vec2 d[2];
+      for (int i = 0; i < 2; ++i) {
+        const int e = k.node(n).edges[static_cast<std::size_t>(i)];
+        d[i] =
+            (k.edge(e).a == n ? k.edge(e).line[1] : k.edge(e).line[k.edge(e).line.size() - 2]) - k.node(n).p;
+      }
+      if (std::abs(dot(d[0], d[1])) < 1e-9 * length(d[0]) * length(d[1])) ++*corners;
+    }
+    return measureStreets(l, {});
+  };
+  std::size_t removedStraight = 0, removedBent = 0;
+  int cornersStraight = 0, cornersBent = 0;
+  const StreetMetrics straight = measure(0.0, &removedStraight, &cornersStraight);
+  const StreetMetrics bent = measure(0.1, &removedBent, &cornersBent);
+  EXPECT_DOUBLE_EQ(straight.circuity, 1.0);
+  EXPECT_EQ(cornersStraight, 0);
+  const auto bends = static_cast<std::size_t>(std::lround(0.1 * g.edgeCount()));
+  EXPECT_EQ(removedBent - removedStraight, bends);
+  // Each bend leaves a corner where it was taken (a T-junction whose two other streets turn).
+  EXPECT_GE(static_cast<std::size_t>(cornersBent), bends);
+  // Every bend is a right-angle corner merged into one edge: legs of 100 m give 200 / (100 sqrt 2).
+  EXPECT_GT(bent.circuity, 1.02);
+  EXPECT_NEAR(bent.shareDeadEnd * bent.nodes, 40.0, 1e-9);
+  EXPECT_LT(bent.share3Way * bent.nodes, straight.share3Way * straight.nodes);
 }
 
 TEST(Streets, DensityAndParksWidenTheSpacing) {
