@@ -138,7 +138,7 @@ std::vector<Vec2> solve(const BlockMatrix& a, const std::vector<Vec2>& b) {
     rz = rz2;
     for (std::size_t i = 0; i < n; ++i) p[i] = z[i] + p[i] * beta;
   }
-  return x;  // CGDEBUG
+  return x;
 }
 
 double median(std::vector<double> v) {

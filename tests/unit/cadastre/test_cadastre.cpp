@@ -256,16 +256,23 @@ double cornerError(const std::vector<Vec2>& corners, const std::vector<Vec2>& ve
   return std::sqrt(sum / static_cast<double>(corners.size()));
 }
 
+/// The drawing collapsed (0.75 m, closest first, free ends only) and its segments cleaned: the linework
+/// the geometric adjustment works on.
+Linework cleanedLinework(const std::vector<CadLine>& lines) {
+  CollapseStats cs;
+  Linework lw = collapseVertices(lines, 0.75, cs, {}, false, true, true);
+  SegmentCleaningStats ss;
+  cleanSegments(lw, 0.75, ss);
+  return lw;
+}
+
 TEST(GeometricAdjustment, FitBeatsTheMeanOfTheCopies) {
   // 36 rectangles drawn with 0.3 m of jitter per copy and shot ends: the fit (copies across their
   // segment, ends shot along their line down-weighted, straight split points, right angles) places
   // the corners closer to the truth than the mean of their copies.
   std::vector<Vec2> corners;
   const std::vector<CadLine> lines = messyRectangles(36, 0.3, corners, 7);
-  CollapseStats cs;
-  Linework lw = collapseVertices(lines, 0.75, cs, {}, false, true, true);
-  SegmentCleaningStats ss;
-  cleanSegments(lw, 0.75, ss);
+  const Linework lw = cleanedLinework(lines);
   AdjustmentStats as;
   const std::vector<Vec2> fitted = adjustedVertices(lw, AdjustmentOptions{}, as);
   const double before = cornerError(corners, lw.vertices), after = cornerError(corners, fitted);
@@ -289,10 +296,7 @@ TEST(GeometricAdjustment, CleanDrawingDoesNotMove) {
   // an 88-degree corner and a 176-degree bend are kept.
   std::vector<CadLine> lines = {{{{0, 0}, {10, 0}, {20, 0.7}, {20.35, 10}, {0, 10}, {0, 0}}, kBuildingLayer},
                                 {{{10, 0}, {10, 10}}, kLotLayer}};
-  CollapseStats cs;
-  Linework lw = collapseVertices(lines, 0.75, cs, {}, false, true, true);
-  SegmentCleaningStats ss;
-  cleanSegments(lw, 0.75, ss);
+  const Linework lw = cleanedLinework(lines);
   AdjustmentStats as;
   const std::vector<Vec2> fitted = adjustedVertices(lw, AdjustmentOptions{}, as);
   ASSERT_EQ(fitted.size(), lw.vertices.size());
@@ -313,10 +317,7 @@ TEST(GeometricAdjustment, ShapesBeyondTheNoiseAreLeftAlone) {
       for (Vec2& end : e) end += Vec2{0.2 * (rng.next() - 0.5), 0.2 * (rng.next() - 0.5)};
       lines.push_back({{e[0], e[1]}, kBuildingLayer});
     }
-  CollapseStats cs;
-  Linework lw = collapseVertices(lines, 0.75, cs, {}, false, true, true);
-  SegmentCleaningStats ss;
-  cleanSegments(lw, 0.75, ss);
+  const Linework lw = cleanedLinework(lines);
   AdjustmentStats as;
   const std::vector<Vec2> fitted = adjustedVertices(lw, AdjustmentOptions{}, as);
   EXPECT_EQ(as.straightConstraints, 0u);
