@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Score table of issue 17: urbanvec cadastre (default and thesis thresholds) against the GRASS, QGIS and
+# Score table of issue 17: urbanvec cadastre (default, without the geometric adjustment, thesis thresholds) against the GRASS, QGIS and
 # plain-clustering baselines on drawings made from the real catastro sample at defect levels L0-L3
-# (L2 with 5 seeds). Usage: bench/cadastre/run_scores.sh [workdir]  (prints a markdown table)
+# (L2 with 5 seeds). Usage: [BASELINES=0] bench/cadastre/run_scores.sh [workdir]  (prints a markdown table)
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
@@ -25,8 +25,11 @@ for spec in L0:1 L1:1 L2:1 L2:2 L2:3 L2:4 L2:5 L3:1; do
   "$PY" "$root/tests/cadastre/make_cad.py" --level "$level" --seed "$seed" "$base" > /dev/null
   "$U" cadastre -q -overwrite "${layers[@]}" "$base.dxf" "$base.urbanvec.gpkg"
   row "$level" "$seed" "urbanvec" "$base.urbanvec.gpkg" "${base}_truth.gpkg"
+  "$U" cadastre -q -overwrite -no-adjust "${layers[@]}" "$base.dxf" "$base.noadjust.gpkg"
+  row "$level" "$seed" "urbanvec -no-adjust (mean of the copies)" "$base.noadjust.gpkg" "${base}_truth.gpkg"
   "$U" cadastre -q -overwrite -thesis-thresholds "${layers[@]}" "$base.dxf" "$base.thesis.gpkg"
   row "$level" "$seed" "urbanvec, thesis 1 m / 3 m" "$base.thesis.gpkg" "${base}_truth.gpkg"
+  [ "${BASELINES:-1}" = 0 ] && continue  # BASELINES=0: urbanvec rows only (the baselines take minutes)
   for m in grass qgis plain; do
     "$PY" "$here/baselines.py" "$m" "$base.dxf" "$base.$m.gpkg"
     row "$level" "$seed" "$m" "$base.$m.gpkg" "${base}_truth.gpkg"

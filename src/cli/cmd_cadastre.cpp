@@ -103,6 +103,22 @@ app::CommandSpec spec() {
           .byDefault(app::numberText(d.straightenShare))
           .atLeast(0)
           .isAdvanced());
+  o.push_back(option("-no-adjust", ValueType::Flag, "",
+                     "Place each vertex at the mean of its drawn copies, without the least-squares "
+                     "adjustment (straight lines, right angles, ends off along their line).")
+                  .isAdvanced());
+  o.push_back(option("-straight-angle", ValueType::Real, "<degrees>",
+                     "Adjustment: vertices whose two segments are within this of 180 degrees are kept on "
+                     "the line of their neighbours; 0 disables.")
+                  .byDefault(app::numberText(d.straightAngle))
+                  .atLeast(0)
+                  .isAdvanced());
+  o.push_back(option("-right-angle", ValueType::Real, "<degrees>",
+                     "Adjustment: angles within this of 90 degrees are held square; other angles are left "
+                     "alone; 0 disables.")
+                  .byDefault(app::numberText(d.rightAngle))
+                  .atLeast(0)
+                  .isAdvanced());
   o.push_back(
       option("-min-area", ValueType::Real, "<m2>", "Circuits smaller than this are slivers and dropped.")
           .byDefault(app::numberText(d.minFaceArea))
@@ -234,6 +250,9 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   options.freeEndsOnly = !args.flag("-collapse-all");
   options.closestFirst = !args.flag("-drawing-order") && !options.thesisRevert;
   options.straightenShare = args.real("-straighten");
+  options.adjust = !args.flag("-no-adjust");
+  options.straightAngle = args.real("-straight-angle");
+  options.rightAngle = args.real("-right-angle");
   options.minFaceArea = args.real("-min-area");
   options.labelSearchDistance = args.real("-label-distance");
   options.groundFloorHeight = args.real("-ground-floor");
@@ -457,6 +476,11 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
       "short last edges folding back on their line, the line ended at the fold");
   row("fringe_edges_removed", n(rep.fringeEdgesRemoved), "removed fringe paths (edges)");
   row("vertices_straightened", n(rep.verticesStraightened), "degree-2 vertices dropped on straight lines");
+  row("adjustment_noise", rep.adjustmentNoise,
+      "estimated spread (m) of the drawn copies across their segments (adjustment weights)");
+  row("straight_constraints", n(rep.straightConstraints), "adjustment: vertices kept on a straight line");
+  row("right_angle_constraints", n(rep.rightAngleConstraints), "adjustment: near-right angles held square");
+  row("vertices_adjusted", n(rep.verticesAdjusted), "vertices moved by the adjustment (> 1 mm)");
   row("slivers_dropped", n(rep.slivers), "circuits under -min-area");
   row("faces_outside_blocks", n(rep.facesOutsideBlocks), "building circuits outside every block");
   row("buildings_outside_blocks", n(rep.buildingsOutsideBlocks),

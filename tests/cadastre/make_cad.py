@@ -152,36 +152,39 @@ def disk(rng, r):
     return d * math.cos(a), d * math.sin(a)
 
 
-def degrade(layers, labels, level, rng):
-    """layers: {name: [(a, b)]}; labels: [(x, y, text)]. Returns degraded copies."""
+def degrade(layers, labels, level, rng, provenance=None):
+    """layers: {name: [(a, b)]}; labels: [(x, y, text)]. Returns degraded copies. With a dict as
+    `provenance`, fills it with {name: [(a, b, tag_a, tag_b)]}: what each drawn segment end is a copy
+    of, ("v", truth vertex) or ("s", split point), ("p", None) for the ends of partial overlaps."""
     names = sorted(layers)
+    tagged = {n: [(a, b, ("v", a), ("v", b)) for a, b in layers[n]] for n in names}
     if level >= 1:
         # 20 % split segments (at a random interior point), then 10 % duplicated.
         for n in names:
             out = []
-            for a, b in layers[n]:
+            for a, b, ta, tb in tagged[n]:
                 if rng.random() < 0.20:
                     t = rng.uniform(0.2, 0.8)
                     m = (a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]))
-                    out += [(a, m), (m, b)]
+                    out += [(a, m, ta, ("s", m)), (m, b, ("s", m), tb)]
                 else:
-                    out.append((a, b))
+                    out.append((a, b, ta, tb))
             dup = [s for s in out if rng.random() < 0.10]
-            layers[n] = out + [(b, a) if rng.random() < 0.5 else (a, b) for a, b in dup]
+            tagged[n] = out + [(b, a, tb, ta) if rng.random() < 0.5 else (a, b, ta, tb) for a, b, ta, tb in dup]
         # Jitter <= 0.05 m, one move per distinct vertex (shared vertices stay shared).
         moves = {}
         for n in names:
-            for s in layers[n]:
-                for p in s:
+            for s in tagged[n]:
+                for p in s[:2]:
                     if p not in moves:
                         moves[p] = disk(rng, 0.05)
         mv = lambda p: (p[0] + moves[p][0], p[1] + moves[p][1])
         for n in names:
-            layers[n] = [(mv(a), mv(b)) for a, b in layers[n]]
+            tagged[n] = [(mv(a), mv(b), ta, tb) for a, b, ta, tb in tagged[n]]
     if level >= 2:
         for n in names:
             out = []
-            for a, b in layers[n]:
+            for a, b, ta, tb in tagged[n]:
                 # Separate jitter of each copy of a vertex.
                 ja, jb = disk(rng, 0.3), disk(rng, 0.3)
                 a = (a[0] + ja[0], a[1] + ja[1])
@@ -198,28 +201,30 @@ def degrade(layers, labels, level, rng):
                         d = rng.uniform(0.1, 0.8) * rng.choice((-1, 1))
                         d = max(d, -0.45 * L)
                         a = (a[0] - ux * d, a[1] - uy * d)
-                out.append((a, b))
-            layers[n] = out
+                out.append((a, b, ta, tb))
+            tagged[n] = out
     if level >= 3:
         wrong = []
         for n in names:
-            for s in layers[n]:
+            for s in tagged[n]:
                 if rng.random() < 0.03:
                     wrong.append((rng.choice([m for m in names if m != n]), s))
             extra = []
-            for a, b in layers[n]:
+            for a, b, _, _ in tagged[n]:
                 if rng.random() < 0.10:
                     # A copy of a part of the segment (one end shared or neither).
                     t0, t1 = rng.uniform(0.0, 0.5), rng.uniform(0.5, 1.0)
                     p = lambda t: (a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]))
-                    extra.append((p(t0), p(t1)))
-            layers[n] = layers[n] + extra
+                    extra.append((p(t0), p(t1), ("p", None), ("p", None)))
+            tagged[n] = tagged[n] + extra
         for n, s in wrong:
-            layers[n].append(s)
+            tagged[n].append(s)
         labels = [(x + disk(rng, 1.0)[0], y + disk(rng, 1.0)[1], t) for x, y, t in labels]
     for n in names:
-        rng.shuffle(layers[n])
-    return layers, labels
+        rng.shuffle(tagged[n])
+    if provenance is not None:
+        provenance.update(tagged)
+    return {n: [(a, b) for a, b, _, _ in tagged[n]] for n in names}, labels
 
 
 def write_dxf(path, layers, labels):

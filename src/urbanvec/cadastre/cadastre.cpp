@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <exception>
 #include <thread>
+#include <unordered_map>
 
 #include "urbanvec/cadastre/buildings.hpp"
 #include "urbanvec/cadastre/circuits.hpp"
 #include "urbanvec/cadastre/floor_labels.hpp"
+#include "urbanvec/cadastre/geometric_adjustment.hpp"
 #include "urbanvec/cadastre/pre_blocks.hpp"
 #include "urbanvec/cadastre/segment_cleaning.hpp"
 #include "urbanvec/cadastre/vertex_collapsing.hpp"
@@ -25,6 +27,41 @@ void addGraphStats(CadastreReport& r, const GraphStats& g) {
   r.hooksCut += g.hooksCut;
   r.fringeEdgesRemoved += g.fringeEdgesRemoved;
   r.verticesStraightened += g.verticesStraightened;
+}
+
+/// Moves every output vertex found among `from` to the same index of `to`, and makes the moved
+/// polygons valid again (a moved vertex may fold a thin polygon).
+void moveVertices(CadastreResult& r, const std::vector<Vec2>& from, const std::vector<Vec2>& to,
+                  double minArea) {
+  std::unordered_map<std::pair<std::uint64_t, std::uint64_t>, Vec2, CoordinateHash> target;
+  target.reserve(from.size());
+  for (std::size_t i = 0; i < from.size(); ++i)
+    if (from[i] != to[i]) target.emplace(coordinateKey(from[i]), to[i]);
+  auto move = [&](MultiPolygon& shape) {
+    MultiPolygon out;
+    for (Polygon& p : shape) {
+      bool moved = false;
+      auto ring = [&](Ring& rg) {
+        for (Vec2& v : rg) {
+          auto it = target.find(coordinateKey(v));
+          if (it != target.end()) v = it->second, moved = true;
+        }
+      };
+      ring(p.outer);
+      for (Ring& h : p.holes) ring(h);
+      if (!moved) {
+        out.push_back(std::move(p));
+        continue;
+      }
+      for (Polygon& part : validParts(p, minArea)) out.push_back(std::move(part));
+    }
+    shape = std::move(out);
+  };
+  for (BlockOut& b : r.blocks) move(b.shape);
+  for (AreaOut& a : r.subBlocks) move(a.shape);
+  for (AreaOut& a : r.courtyards) move(a.shape);
+  for (AreaOut& a : r.parcels) move(a.shape);
+  for (BuildingOut& b : r.buildings) move(b.shape);
 }
 
 std::string number(double v) {
@@ -67,6 +104,21 @@ CadastreResult structureCadastre(const std::vector<CadLine>& lines, const std::v
   cleanSegments(lw, o.collapsingThreshold, ss, subProgress(progress, 0.15, 0.25));
   rep.duplicateSegments = ss.duplicateSegments;
   rep.verticesOnSegments = ss.verticesOnSegments;
+  // Geometric adjustment: computed now, applied to the output polygons at the end, so that every
+  // topological decision below (gap repair, circuits, slivers, labels) is taken on the means of the
+  // copies as before and only the vertices' positions change.
+  std::vector<Vec2> adjusted;
+  if (o.adjust) {
+    AdjustmentOptions ao;
+    ao.straightAngle = o.straightAngle;
+    ao.rightAngle = o.rightAngle;
+    AdjustmentStats as;
+    adjusted = adjustedVertices(lw, ao, as);
+    rep.adjustmentNoise = as.noise;
+    rep.straightConstraints = as.straightConstraints;
+    rep.rightAngleConstraints = as.rightConstraints;
+    rep.verticesAdjusted = as.verticesMoved;
+  }
 
   const double tolerance = o.straightenShare * o.collapsingThreshold;
   // §A.6 blocks: pre-block graph of the block layer, its circuits, sub-blocks and courtyards.
@@ -290,6 +342,7 @@ CadastreResult structureCadastre(const std::vector<CadLine>& lines, const std::v
     if (b.floors > 0) ++rep.buildingsWithFloors;
     result.buildings.push_back(std::move(b));
   }
+  if (!adjusted.empty()) moveVertices(result, lw.vertices, adjusted, o.minFaceArea);
   rep.buildings = result.buildings.size();
   reportProgress(progress, 1.0, "done");
   return result;

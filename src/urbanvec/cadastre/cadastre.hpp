@@ -38,6 +38,9 @@ struct CadastreReport {
   std::size_t duplicateSegments = 0, verticesOnSegments = 0;
   std::size_t cornersClosed = 0, undershootsToSegment = 0, undershootsToVertex = 0, overshootsCut = 0,
               hooksCut = 0, fringeEdgesRemoved = 0, verticesStraightened = 0;
+  /// Geometric adjustment: the drawing's noise estimate (m), constraints, vertices moved.
+  double adjustmentNoise = 0.0;
+  std::size_t straightConstraints = 0, rightAngleConstraints = 0, verticesAdjusted = 0;
   std::size_t preBlocks = 0, blocks = 0, subBlocks = 0, courtyards = 0, parcels = 0, buildings = 0;
   std::size_t buildingsWithFloors = 0;
   std::size_t slivers = 0, facesOutsideBlocks = 0, buildingsOutsideBlocks = 0, enclosedBlocks = 0;

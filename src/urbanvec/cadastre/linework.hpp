@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <functional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -35,12 +37,21 @@ struct Segment {
   int b = -1;
   std::uint8_t layers = 0;
 };
+/// One drawn segment end as it was before collapsing: the vertex it became, the vertex at the other
+/// end of its segment, and where it was drawn (the observations of the geometric adjustment).
+struct EndCopy {
+  int vertex = -1;
+  int other = -1;
+  Vec2 p;
+};
 struct Linework {
   std::vector<Vec2> vertices;
   std::vector<Segment> segments;
   /// Per vertex, when filled: 1 where lines already met exactly in the drawing (a sound vertex that
   /// segment cleaning leaves in place), 0 for a free end.
   std::vector<char> sound;
+  /// Every drawn segment end (two per segment step that did not collapse to a point).
+  std::vector<EndCopy> copies;
 };
 
 /// The options of the whole pipeline; every number of the thesis is a default here (§A.9).
@@ -76,6 +87,15 @@ struct CadastreOptions {
   /// slivers up to that wide (was 0.35 times the Collapsing Threshold, which left some as sub-blocks
   /// below 1 m and dropped thin real parts of clean drawings above it).
   double sliverWidth = 0.34;
+  /// Beyond the thesis: geometric adjustment once the topology is known (geometric_adjustment.hpp):
+  /// each vertex is fitted to all the drawn copies of its segment ends (across each copy's segment at
+  /// full weight, along it with a Huber weight), with soft constraints keeping vertices within
+  /// `straightAngle` degrees of 180 on the line of their neighbours and angles within `rightAngle`
+  /// degrees of 90 square (0 disables either). Measured on the sample's L2 drawings (5 seeds):
+  /// building-part recall 0.785 against 0.744 with the mean of the copies (docs/cadastre.md).
+  bool adjust = true;
+  double straightAngle = 10.0;
+  double rightAngle = 10.0;
   /// Faces smaller than this (m²) are slivers between nearly coincident lines and are dropped.
   double minFaceArea = 0.1;
   /// A label outside every building element goes to the nearest one within this distance (m).
@@ -90,6 +110,20 @@ struct CadastreOptions {
   /// Worker threads (0 = all cores): with two or more, the parcel and building graphs are built side
   /// by side. The output does not depend on it.
   int threads = 1;
+};
+
+/// Exact coordinates as a hash key (-0.0 and 0.0 are the same point).
+inline std::pair<std::uint64_t, std::uint64_t> coordinateKey(const Vec2& p) {
+  std::uint64_t x, y;
+  const double px = p.x + 0.0, py = p.y + 0.0;
+  std::memcpy(&x, &px, 8);
+  std::memcpy(&y, &py, 8);
+  return {x, y};
+}
+struct CoordinateHash {
+  std::size_t operator()(const std::pair<std::uint64_t, std::uint64_t>& k) const {
+    return std::hash<std::uint64_t>()(k.first * 0x9E3779B97F4A7C15ULL ^ k.second);
+  }
 };
 
 /// A uniform grid of ids by cell, for proximity queries (collapsing, snapping, clustering).

@@ -10,20 +10,6 @@
 namespace urbanvec::cadastre {
 namespace {
 
-struct PairHash {
-  std::size_t operator()(const std::pair<std::uint64_t, std::uint64_t>& k) const {
-    return std::hash<std::uint64_t>()(k.first * 0x9E3779B97F4A7C15ULL ^ k.second);
-  }
-};
-
-std::pair<std::uint64_t, std::uint64_t> bitsOf(const Vec2& p) {
-  std::uint64_t x, y;
-  const double px = p.x + 0.0, py = p.y + 0.0;  // -0.0 and 0.0 are the same point
-  std::memcpy(&x, &px, 8);
-  std::memcpy(&y, &py, 8);
-  return {x, y};
-}
-
 /// A representative vertex: the original coordinates (distinct ids) it stands for.
 struct Rep {
   std::vector<int> members;
@@ -210,13 +196,13 @@ Linework collapseVertices(const std::vector<CadLine>& lines, double threshold, C
                           const Progress& progress, bool revert, bool freeEndsOnly, bool closestFirst) {
   stats = {};
   // 1. Identical coordinates are one vertex (§A.4 case 1); ids in order of first occurrence.
-  std::unordered_map<std::pair<std::uint64_t, std::uint64_t>, int, PairHash> idOf;
+  std::unordered_map<std::pair<std::uint64_t, std::uint64_t>, int, CoordinateHash> idOf;
   std::vector<Vec2> coords;
   std::vector<std::vector<int>> lineIds(lines.size());
   for (size_t l = 0; l < lines.size(); ++l)
     for (const Vec2& p : lines[l].line) {
       ++stats.inputVertices;
-      auto [it, fresh] = idOf.emplace(bitsOf(p), static_cast<int>(coords.size()));
+      auto [it, fresh] = idOf.emplace(coordinateKey(p), static_cast<int>(coords.size()));
       if (fresh) coords.push_back(p);
       lineIds[l].push_back(it->second);
     }
@@ -347,6 +333,8 @@ Linework collapseVertices(const std::vector<CadLine>& lines, double threshold, C
         continue;
       }
       out.segments.push_back({a, b, lines[l].layer});
+      out.copies.push_back({a, b, lines[l].line[i - 1]});
+      out.copies.push_back({b, a, lines[l].line[i]});
     }
   }
   return out;
