@@ -327,6 +327,19 @@ bool consistentWithSegment(const std::vector<Vec2>& placements, const Vec2& a, c
   return consistentWithLine(placements, a, ab / len, slack);
 }
 
+bool straightChain(const std::vector<Vec2>& placements, const Vec2& a, const Vec2& b,
+                   const ThroughRoadOptions& options) {
+  if (consistentWithSegment(placements, a, b, options.slack)) return true;
+  if (!(options.endOffset > 0.0) || placements.size() < 2) return false;
+  // The placements form a digital straight line of their own fitted line, and the ends the road is
+  // drawn between lie near it: within endOffset of the band.
+  Vec2 centre, direction;
+  fitLine(placements, centre, direction);
+  const double ends = options.endOffset * digitalLineBand(direction) + options.slack;
+  return consistentWithLine(placements, centre, direction, options.slack) &&
+         std::fabs(cross(direction, a - centre)) <= ends && std::fabs(cross(direction, b - centre)) <= ends;
+}
+
 ThroughRoadStats straightenThroughRoads(RoadGraph& graph, const ThroughRoadOptions& options,
                                         const Progress& progress) {
   ThroughRoadStats stats;
@@ -374,7 +387,7 @@ ThroughRoadStats straightenThroughRoads(RoadGraph& graph, const ThroughRoadOptio
         placements.push_back(graph.nodes[k].placed);
       }
       const Vec2 a = graph.nodes[i].p, b = graph.nodes[end].p;
-      if (!road || !consistentWithSegment(placements, a, b, options.slack)) continue;
+      if (!road || !straightChain(placements, a, b, options)) continue;
       const Vec2 ab = b - a;
       double along = 0.0;
       const std::vector<int> moved(chain.begin(), chain.end() - 1);

@@ -112,6 +112,33 @@ TEST(ThroughRoads, CurveBeyondTheBandStaysACurve) {
   }
 }
 
+TEST(ThroughRoads, StraightRoadBetweenEndsALittleOffItsLineIsDrawnStraight) {
+  // A street along row y = 0.5 whose cells hold two placements 0.45 pw up in its middle (within the band of
+  // 0.5 of their fitted line), between dead ends; one end was left 0.15 pw below the row. The segment between
+  // the ends misses the two placements' band (0.53 > 0.50 pw), but the placements form a straight line
+  // and both ends lie within half its band: the road is drawn straight between the ends.
+  std::vector<Vec2> points;
+  for (int k = 0; k <= 20; ++k) points.push_back({k + 0.5, k == 9 || k == 10 ? 0.95 : 0.5});
+  RoadGraph g;
+  const std::vector<int> ids = path(g, points);
+  g.nodes[ids.front()].p = {0.5, 0.35};
+  ThroughRoadOptions segmentOnly;
+  segmentOnly.endOffset = 0.0;
+  RoadGraph before = g;
+  EXPECT_EQ(straightenThroughRoads(before, segmentOnly).straightChains, 0u);
+  EXPECT_DOUBLE_EQ(before.nodes[ids[9]].p.y, 0.95);
+  const ThroughRoadStats s = straightenThroughRoads(g, {});
+  EXPECT_EQ(s.straightChains, 1u);
+  EXPECT_LT(largestTurn(g, ids), 1e-6);
+  EXPECT_NEAR(g.nodes[ids[9]].p.y, 0.35 + 0.15 * 9 / 20, 1e-3);  // on the segment, near x = 9.5
+  // An end a whole band off (0.5 pw below the row) is not near the line: the road keeps its nodes.
+  RoadGraph farEnd;
+  const std::vector<int> farIds = path(farEnd, points);
+  farEnd.nodes[farIds.front()].p = {0.5, 0.0};
+  EXPECT_EQ(straightenThroughRoads(farEnd, {}).straightChains, 0u);
+  EXPECT_DOUBLE_EQ(farEnd.nodes[farIds[9]].p.y, 0.95);
+}
+
 TEST(ThroughRoads, TJunctionStemMeetsTheThroughRoadAtItsOwnAngleWithoutAHook) {
   // A through road along y = 0 and a stem leaving (0, 0) at 60 degrees whose first node hooks
   // towards the east, as the cells of a junction pull it.
