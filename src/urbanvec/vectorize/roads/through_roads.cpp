@@ -20,6 +20,9 @@ double digitalLineBand(const Vec2& d) {
 
 namespace {
 
+/// Placements are cell centres and corners: a distance equal to a radius up to rounding counts as within.
+constexpr double kPlacementRounding = 1e-9;
+
 bool consistentWithLine(const std::vector<Vec2>& placements, const Vec2& centre, const Vec2& direction,
                         double slack) {
   // A digital line's cells reach the band's edge exactly (every other cell of a 45-degree staircase), so
@@ -371,8 +374,9 @@ ThroughRoadStats straightenThroughRoads(RoadGraph& graph, const ThroughRoadOptio
   ticker.finish();
 
   // Straight roads: every chain between two ends whose placements lie in the band of the straight
-  // line joining its (placed) ends is drawn on that line.
-  std::vector<Vec2> placements;
+  // line joining its (placed) ends, or of their own line with the ends near it (straightChain), is
+  // drawn on the segment between its ends.
+  std::vector<Vec2> placements, outer;
   for (std::size_t i = 0; i < n; ++i) {
     if (!isRoad(graph.nodes[i]) || !isChainEnd(graph, static_cast<int>(i))) continue;
     const std::vector<std::int32_t> links = graph.nodes[i].links;
@@ -386,8 +390,23 @@ ThroughRoadStats straightenThroughRoads(RoadGraph& graph, const ThroughRoadOptio
         road = road && isRoad(graph.nodes[k]);
         placements.push_back(graph.nodes[k].placed);
       }
+      if (!road) continue;
+      // Also without the cells of the crossings at its ends (within innerRadius of an intersection's
+      // placement, as the arms leave them out of their fit): a crossing's cells bulge around its node.
+      outer.clear();
+      for (const Vec2& p : placements) {
+        bool crossing = false;
+        for (int e : {static_cast<int>(i), end})
+          crossing =
+              crossing || (graph.nodes[e].links.size() >= 3 &&
+                           distance(p, graph.nodes[e].placed) <= options.innerRadius + kPlacementRounding);
+        if (!crossing) outer.push_back(p);
+      }
       const Vec2 a = graph.nodes[i].p, b = graph.nodes[end].p;
-      if (!road || !straightChain(placements, a, b, options)) continue;
+      const bool straight =
+          straightChain(placements, a, b, options) ||
+          (outer.size() >= 2 && outer.size() < placements.size() && straightChain(outer, a, b, options));
+      if (!straight) continue;
       const Vec2 ab = b - a;
       double along = 0.0;
       const std::vector<int> moved(chain.begin(), chain.end() - 1);

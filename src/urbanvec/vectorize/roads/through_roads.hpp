@@ -80,7 +80,9 @@ bool consistentWithSegment(const std::vector<Vec2>& placements, const Vec2& a, c
 
 /// B7's straight-road rule for a chain drawn between its ends a and b: its placements are consistent
 /// with the segment ab, or with their own fitted line while a and b lie within
-/// ThroughRoadOptions::endOffset of that line's band of it.
+/// ThroughRoadOptions::endOffset of that line's band of it. B7 tries it on all the chain's placements
+/// (its ends' included) and on those farther than innerRadius from an intersection end's placement
+/// (a crossing's cells bulge around its node, as the arms' fits leave them out).
 bool straightChain(const std::vector<Vec2>& placements, const Vec2& a, const Vec2& b,
                    const ThroughRoadOptions& options);
 

@@ -139,6 +139,35 @@ TEST(ThroughRoads, StraightRoadBetweenEndsALittleOffItsLineIsDrawnStraight) {
   EXPECT_DOUBLE_EQ(farEnd.nodes[farIds[9]].p.y, 0.95);
 }
 
+TEST(ThroughRoads, StraightRoadBetweenCrossingsLeavesTheCrossingsCellsOut) {
+  // A street along row y = 0.5 between two crossings (north-south streets through its ends). Next to
+  // the west crossing a cell of the crossing bulges a whole cell up (1.41 pw from the crossing's
+  // placement, within the inner radius), and smoothing left a jog in the middle of the street. Without
+  // the crossing's cells the street's placements are a straight line: it is drawn straight.
+  RoadGraph g;
+  std::vector<Vec2> points{{0.5, 0.5}, {1.5, 1.5}};
+  for (int k = 2; k <= 20; ++k) points.push_back({k + 0.5, 0.5});
+  const std::vector<int> ids = path(g, points);
+  for (int end : {ids.front(), ids.back()}) {
+    const Vec2 at = g.nodes[end].placed;
+    std::vector<Vec2> north, south;
+    for (int k = 1; k <= 6; ++k) {
+      north.push_back(at + Vec2(0, k));
+      south.push_back(at - Vec2(0, k));
+    }
+    path(g, north, end);
+    path(g, south, end);
+  }
+  g.nodes[ids[10]].p.y = 0.8;
+  RoadGraph whole = g;
+  ThroughRoadOptions options;
+  options.innerRadius = 1.0;  // the bulging cell counts as the street's
+  straightenThroughRoads(whole, options);
+  EXPECT_DOUBLE_EQ(whole.nodes[ids[10]].p.y, 0.8);
+  straightenThroughRoads(g, {});
+  EXPECT_NEAR(g.nodes[ids[10]].p.y, 0.5, 1e-9);
+}
+
 TEST(ThroughRoads, TJunctionStemMeetsTheThroughRoadAtItsOwnAngleWithoutAHook) {
   // A through road along y = 0 and a stem leaving (0, 0) at 60 degrees whose first node hooks
   // towards the east, as the cells of a junction pull it.
