@@ -190,6 +190,24 @@ bool leastSquaresCrossing(const std::vector<std::pair<Vec2, Vec2>>& lines, Vec2&
   return true;
 }
 
+/// straightChain on the placements of a road between the nodes e0 and e1 (drawn from a to b), or on
+/// those farther than innerRadius from the placement of an end that is an intersection: a crossing's
+/// cells bulge around its node, as the arms' fits leave them out. `scratch` is working space.
+bool straightBetween(const RoadGraph& graph, const std::vector<Vec2>& placements, int e0, int e1,
+                     const Vec2& a, const Vec2& b, const ThroughRoadOptions& options,
+                     std::vector<Vec2>& scratch) {
+  if (straightChain(placements, a, b, options)) return true;
+  scratch.clear();
+  for (const Vec2& p : placements) {
+    bool crossing = false;
+    for (int e : {e0, e1})
+      crossing = crossing || (graph.nodes[e].links.size() >= 3 &&
+                              distance(p, graph.nodes[e].placed) <= options.innerRadius + kPlacementRounding);
+    if (!crossing) scratch.push_back(p);
+  }
+  return scratch.size() >= 2 && scratch.size() < placements.size() && straightChain(scratch, a, b, options);
+}
+
 void placeIntersection(RoadGraph& graph, int at, const ThroughRoadOptions& options,
                        const Surroundings& around, ThroughRoadStats& stats) {
   RoadNode& node = graph.nodes[at];
@@ -280,7 +298,7 @@ void placeIntersection(RoadGraph& graph, int at, const ThroughRoadOptions& optio
   // runs straight and a stem meets the crossing at its own angle without a hook. When a node would
   // leave the reach of the cells, the straight piece is shortened (anchored one node nearer) until
   // all fit. Positions along the line never go back, so the arm cannot fold.
-  std::vector<Vec2> onLine;
+  std::vector<Vec2> onLine, cells, scratch;
   for (Arm& arm : arms) {
     if (arm.movable == 0) continue;
     const std::vector<int> chain = followChain(graph, at, arm.nodes[0]);
@@ -303,6 +321,15 @@ void placeIntersection(RoadGraph& graph, int at, const ThroughRoadOptions& optio
                       : distance(onLine.back(), n.placed) <= smoothingShiftLimit(n.type, options.reach);
       }
       if (!inReach) continue;
+      if (options.straightApproachesOnly) {
+        // Only an approach whose cells are straight is drawn straight (the straight-road rule, from the
+        // crossing to the anchor): a road curving into a crossing keeps its curve.
+        cells.assign(1, node.placed);
+        for (std::size_t m = 0; m < count; ++m) cells.push_back(graph.nodes[arm.nodes[m]].placed);
+        cells.push_back(graph.nodes[anchor].placed);
+        if (!straightBetween(graph, cells, at, anchor, target, graph.nodes[anchor].p, options, scratch))
+          continue;
+      }
       for (std::size_t m = 0; m < count; ++m) {
         moved.push_back(arm.nodes[m]);
         before.push_back(graph.nodes[arm.nodes[m]].p);
@@ -391,22 +418,8 @@ ThroughRoadStats straightenThroughRoads(RoadGraph& graph, const ThroughRoadOptio
         placements.push_back(graph.nodes[k].placed);
       }
       if (!road) continue;
-      // Also without the cells of the crossings at its ends (within innerRadius of an intersection's
-      // placement, as the arms leave them out of their fit): a crossing's cells bulge around its node.
-      outer.clear();
-      for (const Vec2& p : placements) {
-        bool crossing = false;
-        for (int e : {static_cast<int>(i), end})
-          crossing =
-              crossing || (graph.nodes[e].links.size() >= 3 &&
-                           distance(p, graph.nodes[e].placed) <= options.innerRadius + kPlacementRounding);
-        if (!crossing) outer.push_back(p);
-      }
       const Vec2 a = graph.nodes[i].p, b = graph.nodes[end].p;
-      const bool straight =
-          straightChain(placements, a, b, options) ||
-          (outer.size() >= 2 && outer.size() < placements.size() && straightChain(outer, a, b, options));
-      if (!straight) continue;
+      if (!straightBetween(graph, placements, static_cast<int>(i), end, a, b, options, outer)) continue;
       const Vec2 ab = b - a;
       double along = 0.0;
       const std::vector<int> moved(chain.begin(), chain.end() - 1);

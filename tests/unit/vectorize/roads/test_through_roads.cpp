@@ -168,6 +168,31 @@ TEST(ThroughRoads, StraightRoadBetweenCrossingsLeavesTheCrossingsCellsOut) {
   EXPECT_NEAR(g.nodes[ids[10]].p.y, 0.5, 1e-9);
 }
 
+TEST(ThroughRoads, ApproachThatCurvesBeforeItsAnchorKeepsItsCurve) {
+  // A T-junction: a street along y = 0 through (0, 0) and a stem going north on x = 0 for 5 pw, then
+  // curving east. The first stem node beyond the window (1, 6) anchors the approach; the stem's
+  // cells up to it are no straight line, so the approach is drawn straight only up to (0, 5).
+  RoadGraph g;
+  const int centre = g.addNode({0, 0}, NodeType::Secondary);
+  std::vector<Vec2> east, west;
+  for (int k = 1; k <= 8; ++k) {
+    east.push_back({static_cast<double>(k), 0});
+    west.push_back({-static_cast<double>(k), 0});
+  }
+  path(g, east, centre);
+  path(g, west, centre);
+  const std::vector<int> stem =
+      path(g, {{0, 1}, {0, 2}, {0, 3}, {0, 4}, {0, 5}, {1, 6}, {2, 6.6}, {3, 7}, {4, 7.2}}, centre);
+  RoadGraph curving = g;
+  straightenThroughRoads(curving, {});
+  EXPECT_DOUBLE_EQ(curving.nodes[stem[4]].p.x, 0.0);
+  // Drawing every approach straight cuts the curve: (0, 5) moves onto the piece to (1, 6).
+  ThroughRoadOptions every;
+  every.straightApproachesOnly = false;
+  straightenThroughRoads(g, every);
+  EXPECT_NEAR(g.nodes[stem[4]].p.x, 30.0 / 37.0, 1e-9);  // its projection onto the piece
+}
+
 TEST(ThroughRoads, TJunctionStemMeetsTheThroughRoadAtItsOwnAngleWithoutAHook) {
   // A through road along y = 0 and a stem leaving (0, 0) at 60 degrees whose first node hooks
   // towards the east, as the cells of a junction pull it.
