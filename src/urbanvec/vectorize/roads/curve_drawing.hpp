@@ -20,7 +20,8 @@ namespace urbanvec::vectorize {
 struct CurveDrawingOptions {
   /// [INFERENCE, beyond the documents] Largest distance (pw) between the drawn chords and the spline;
   /// 0 = the simplified polylines as they are. 0.02 pw (16 cm on an 8 m grid) draws a curve as a
-  /// curve at any scale a map is read at; measured in docs/vectorize.md ("Curves drawn as curves").
+  /// curve at any scale a map is read at; measured in docs/vectorize.md ("Curves drawn as curves, straight
+  /// roads between ends off their line").
   double tolerance = 0.02;
   /// Halvings of a piece at most (2^6 = 64 chords per piece).
   int maxDepth = 6;

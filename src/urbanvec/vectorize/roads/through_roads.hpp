@@ -54,15 +54,16 @@ struct ThroughRoadOptions {
   /// fitted line (total least squares) and both ends, where the road is drawn from and to, lie within
   /// this share of that line's band of it: ends that earlier stages left a little off the cells' line
   /// (a crossing's cluster mean, a 2x2 window corner) no longer keep a straight road zigzagging.
-  /// 0 = only the segment between the ends is tried. Measured (docs/vectorize.md, "Straight roads
-  /// between ends off their line"): 0.5 takes 17-31 % of the turning off the 15-45 degree grids and
-  /// leaves Bubenec as it is; a whole band (1) also moves Bubenec's p95 distance out by 5 %.
+  /// 0 = only the segment between the ends is tried. Measured (docs/vectorize.md, "Curves drawn as
+  /// curves, straight roads between ends off their line"): 0.5 takes 18-31 % of the turning off the 15-45
+  /// degree grids and leaves Bubenec as it is; a whole band (1) also moves Bubenec's p95 distance out by 5 %.
   double endOffset = 0.5;
   /// An arm's approach (its nodes from the crossing to the first node left in place) is drawn straight
   /// only when its placements pass the straight-road rule between the crossing and that node (the
   /// crossings' own cells left out as for straight roads); false = every approach within reach of its
-  /// cells is drawn straight, curves included. Measured (docs/vectorize.md, "Approaches that curve"):
-  /// Monaco 54 instead of 52 of its 72 matchable blocks, distances closer on both samples.
+  /// cells is drawn straight, curves included. Measured (docs/vectorize.md, "Curves drawn as curves, straight
+  /// roads between ends off their line"): Monaco 54 instead of 52 of its 72 matchable blocks, distances
+  /// closer on both samples.
   bool straightApproachesOnly = true;
 };
 
