@@ -235,6 +235,14 @@ app::CommandSpec spec() {
           .withUnit("cells")
           .atLeast(0)
           .isAdvanced());
+  o.push_back(option("-curve-tolerance", ValueType::Real, "<cells>",
+                     "Curved pieces of the output segments (both ends turning the same way) are drawn on the "
+                     "spline through the segment's vertices, within this distance of it (0 = straight pieces "
+                     "between the simplified vertices).")
+                  .byDefault(app::numberText(d.curveDrawing.tolerance))
+                  .withUnit("cells")
+                  .atLeast(0)
+                  .isAdvanced());
   s.examples = {
       "urbanvec vectorize -density density.tif -parcels parcels.tif -parcel-table parcels.csv landuse.tif "
       "city.gpkg",
@@ -292,6 +300,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
     }
   }
   options.outputSimplification = args.real("-simplify");
+  options.curveDrawing.tolerance = args.real("-curve-tolerance");
   options.roadsOnly = args.flag("-roads-only");
   options.city.parcels.seed = static_cast<std::uint64_t>(args.integer("-seed"));
   options.city.parcels.tries = static_cast<int>(args.integer("-tries"));

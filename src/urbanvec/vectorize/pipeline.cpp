@@ -276,12 +276,15 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
                                              options.outputSimplification);
       restored = restoreTouchingSegments(result.network, exact);
     }
+    const CurveDrawingStats curves =
+        drawCurves(result.network, input.landUse, result.cells, options.curveDrawing);
     std::vector<Layer> layers = roadLayers(result.network, input.spec);
     const std::size_t segments = layers[0].features.size();
     for (Layer& l : layers) result.layers.push_back(std::move(l));
     return counts(noded, " crossings noded, ", segments, " road segments, ", restored,
                   " kept unsimplified (touching another), ", uncovering,
-                  " simplified less (uncovering a road cell)");
+                  " simplified less (uncovering a road cell), ", curves.segments, " drawn with curves (",
+                  curves.points, " spline points), ", curves.restored, " kept as polylines");
   });
   if (!options.roadsOnly) {
     const auto t0 = std::chrono::steady_clock::now();

@@ -12,6 +12,7 @@
 #include "urbanvec/vectorize/blocks/raw_blocks.hpp"
 #include "urbanvec/vectorize/city_pipeline.hpp"
 #include "urbanvec/vectorize/parcels/parcel_loading.hpp"
+#include "urbanvec/vectorize/roads/curve_drawing.hpp"
 #include "urbanvec/vectorize/roads/curve_smoothing.hpp"
 #include "urbanvec/vectorize/roads/cycle_removal.hpp"
 #include "urbanvec/vectorize/roads/intersection_simplification.hpp"
@@ -60,6 +61,9 @@ struct VectorizeOptions {
   /// segments, in pw (0 = every graph node becomes a vertex). The graph keeps its nodes; this removes
   /// the sub-cell wiggle left by smoothing a staircase, which otherwise dominates the turning per km.
   double outputSimplification = 0.3;
+  /// [INFERENCE, output only, issue 20] Curved pieces of the simplified segments drawn on the spline
+  /// through their vertices (roads/curve_drawing.hpp); tolerance 0 = the polylines as simplified.
+  CurveDrawingOptions curveDrawing;
   /// Stages C-E (pavement, blocks, spines, parcels, land use, population).
   CityOptions city;
   /// Stop after the road network (stages A-B): only roads and road_nodes are produced.

@@ -319,7 +319,7 @@ std::size_t restoreUncoveringSegments(RoadNetwork& simplified, const RoadNetwork
     if (!touched.empty()) {
       // The coarsest of half, a quarter of the tolerance, or none, that covers the cells again.
       LineString line = s.points;
-      for (double t = tolerance * 0.5; t >= tolerance * 0.25; t *= 0.5) {
+      for (double t = tolerance * 0.5; t > 0.0 && t >= tolerance * 0.25; t *= 0.5) {
         LineString candidate = simplifyTogether({s.points}, t).front();
         bool covers = true;
         for (size_t i : touched) {

@@ -68,7 +68,8 @@ std::size_t restoreTouchingSegments(RoadNetwork& simplified, const RoadNetwork& 
 /// leaves a road cell of `landUse` (not marked kRemovedRoad in `cleaned`) farther than `maxDistance`
 /// from every simplified road, each segment whose `exact` line (the same network unsimplified, segment
 /// for segment) passes within `maxDistance` of the cell is simplified again with half, then a quarter
-/// of the tolerance, and gets its exact line back when neither covers the cell. Returns the number of
+/// of the tolerance, and gets its exact line back when neither covers the cell (at once with a
+/// `tolerance` of 0, for lines that were changed otherwise than by simplifying). Returns the number of
 /// segments changed. Cost: linear in grid cells plus road length. A segment simplified on its own may
 /// touch another: run restoreTouchingSegments afterwards.
 std::size_t restoreUncoveringSegments(RoadNetwork& simplified, const RoadNetwork& exact,

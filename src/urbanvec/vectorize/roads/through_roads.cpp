@@ -20,6 +20,9 @@ double digitalLineBand(const Vec2& d) {
 
 namespace {
 
+/// Placements are cell centres and corners: a distance equal to a radius up to rounding counts as within.
+constexpr double kPlacementRounding = 1e-9;
+
 bool consistentWithLine(const std::vector<Vec2>& placements, const Vec2& centre, const Vec2& direction,
                         double slack) {
   // A digital line's cells reach the band's edge exactly (every other cell of a 45-degree staircase), so
@@ -187,6 +190,24 @@ bool leastSquaresCrossing(const std::vector<std::pair<Vec2, Vec2>>& lines, Vec2&
   return true;
 }
 
+/// straightChain on the placements of a road between the nodes e0 and e1 (drawn from a to b), or on
+/// those farther than innerRadius from the placement of an end that is an intersection: a crossing's
+/// cells bulge around its node, as the arms' fits leave them out. `scratch` is working space.
+bool straightBetween(const RoadGraph& graph, const std::vector<Vec2>& placements, int e0, int e1,
+                     const Vec2& a, const Vec2& b, const ThroughRoadOptions& options,
+                     std::vector<Vec2>& scratch) {
+  if (straightChain(placements, a, b, options)) return true;
+  scratch.clear();
+  for (const Vec2& p : placements) {
+    bool crossing = false;
+    for (int e : {e0, e1})
+      crossing = crossing || (graph.nodes[e].links.size() >= 3 &&
+                              distance(p, graph.nodes[e].placed) <= options.innerRadius + kPlacementRounding);
+    if (!crossing) scratch.push_back(p);
+  }
+  return scratch.size() >= 2 && scratch.size() < placements.size() && straightChain(scratch, a, b, options);
+}
+
 void placeIntersection(RoadGraph& graph, int at, const ThroughRoadOptions& options,
                        const Surroundings& around, ThroughRoadStats& stats) {
   RoadNode& node = graph.nodes[at];
@@ -277,7 +298,7 @@ void placeIntersection(RoadGraph& graph, int at, const ThroughRoadOptions& optio
   // runs straight and a stem meets the crossing at its own angle without a hook. When a node would
   // leave the reach of the cells, the straight piece is shortened (anchored one node nearer) until
   // all fit. Positions along the line never go back, so the arm cannot fold.
-  std::vector<Vec2> onLine;
+  std::vector<Vec2> onLine, cells, scratch;
   for (Arm& arm : arms) {
     if (arm.movable == 0) continue;
     const std::vector<int> chain = followChain(graph, at, arm.nodes[0]);
@@ -300,6 +321,15 @@ void placeIntersection(RoadGraph& graph, int at, const ThroughRoadOptions& optio
                       : distance(onLine.back(), n.placed) <= smoothingShiftLimit(n.type, options.reach);
       }
       if (!inReach) continue;
+      if (options.straightApproachesOnly) {
+        // Only an approach whose cells are straight is drawn straight (the straight-road rule, from the
+        // crossing to the anchor): a road curving into a crossing keeps its curve.
+        cells.assign(1, node.placed);
+        for (std::size_t m = 0; m < count; ++m) cells.push_back(graph.nodes[arm.nodes[m]].placed);
+        cells.push_back(graph.nodes[anchor].placed);
+        if (!straightBetween(graph, cells, at, anchor, target, graph.nodes[anchor].p, options, scratch))
+          continue;
+      }
       for (std::size_t m = 0; m < count; ++m) {
         moved.push_back(arm.nodes[m]);
         before.push_back(graph.nodes[arm.nodes[m]].p);
@@ -325,6 +355,19 @@ bool consistentWithSegment(const std::vector<Vec2>& placements, const Vec2& a, c
   const double len = length(ab);
   if (len == 0) return false;
   return consistentWithLine(placements, a, ab / len, slack);
+}
+
+bool straightChain(const std::vector<Vec2>& placements, const Vec2& a, const Vec2& b,
+                   const ThroughRoadOptions& options) {
+  if (consistentWithSegment(placements, a, b, options.slack)) return true;
+  if (!(options.endOffset > 0.0) || placements.size() < 2) return false;
+  // The placements form a digital straight line of their own fitted line, and the ends the road is
+  // drawn between lie near it: within endOffset of the band.
+  Vec2 centre, direction;
+  fitLine(placements, centre, direction);
+  const double ends = options.endOffset * digitalLineBand(direction) + options.slack;
+  return consistentWithLine(placements, centre, direction, options.slack) &&
+         std::fabs(cross(direction, a - centre)) <= ends && std::fabs(cross(direction, b - centre)) <= ends;
 }
 
 ThroughRoadStats straightenThroughRoads(RoadGraph& graph, const ThroughRoadOptions& options,
@@ -358,8 +401,9 @@ ThroughRoadStats straightenThroughRoads(RoadGraph& graph, const ThroughRoadOptio
   ticker.finish();
 
   // Straight roads: every chain between two ends whose placements lie in the band of the straight
-  // line joining its (placed) ends is drawn on that line.
-  std::vector<Vec2> placements;
+  // line joining its (placed) ends, or of their own line with the ends near it (straightChain), is
+  // drawn on the segment between its ends.
+  std::vector<Vec2> placements, outer;
   for (std::size_t i = 0; i < n; ++i) {
     if (!isRoad(graph.nodes[i]) || !isChainEnd(graph, static_cast<int>(i))) continue;
     const std::vector<std::int32_t> links = graph.nodes[i].links;
@@ -373,8 +417,9 @@ ThroughRoadStats straightenThroughRoads(RoadGraph& graph, const ThroughRoadOptio
         road = road && isRoad(graph.nodes[k]);
         placements.push_back(graph.nodes[k].placed);
       }
+      if (!road) continue;
       const Vec2 a = graph.nodes[i].p, b = graph.nodes[end].p;
-      if (!road || !consistentWithSegment(placements, a, b, options.slack)) continue;
+      if (!straightBetween(graph, placements, static_cast<int>(i), end, a, b, options, outer)) continue;
       const Vec2 ab = b - a;
       double along = 0.0;
       const std::vector<int> moved(chain.begin(), chain.end() - 1);

@@ -112,6 +112,87 @@ TEST(ThroughRoads, CurveBeyondTheBandStaysACurve) {
   }
 }
 
+TEST(ThroughRoads, StraightRoadBetweenEndsALittleOffItsLineIsDrawnStraight) {
+  // A street along row y = 0.5 whose cells hold two placements 0.45 pw up in its middle (within the band of
+  // 0.5 of their fitted line), between dead ends; one end was left 0.15 pw below the row. The segment between
+  // the ends misses the two placements' band (0.53 > 0.50 pw), but the placements form a straight line
+  // and both ends lie within half its band: the road is drawn straight between the ends.
+  std::vector<Vec2> points;
+  for (int k = 0; k <= 20; ++k) points.push_back({k + 0.5, k == 9 || k == 10 ? 0.95 : 0.5});
+  RoadGraph g;
+  const std::vector<int> ids = path(g, points);
+  g.nodes[ids.front()].p = {0.5, 0.35};
+  ThroughRoadOptions segmentOnly;
+  segmentOnly.endOffset = 0.0;
+  RoadGraph before = g;
+  EXPECT_EQ(straightenThroughRoads(before, segmentOnly).straightChains, 0u);
+  EXPECT_DOUBLE_EQ(before.nodes[ids[9]].p.y, 0.95);
+  const ThroughRoadStats s = straightenThroughRoads(g, {});
+  EXPECT_EQ(s.straightChains, 1u);
+  EXPECT_LT(largestTurn(g, ids), 1e-6);
+  EXPECT_NEAR(g.nodes[ids[9]].p.y, 0.35 + 0.15 * 9 / 20, 1e-3);  // on the segment, near x = 9.5
+  // An end a whole band off (0.5 pw below the row) is not near the line: the road keeps its nodes.
+  RoadGraph farEnd;
+  const std::vector<int> farIds = path(farEnd, points);
+  farEnd.nodes[farIds.front()].p = {0.5, 0.0};
+  EXPECT_EQ(straightenThroughRoads(farEnd, {}).straightChains, 0u);
+  EXPECT_DOUBLE_EQ(farEnd.nodes[farIds[9]].p.y, 0.95);
+}
+
+TEST(ThroughRoads, StraightRoadBetweenCrossingsLeavesTheCrossingsCellsOut) {
+  // A street along row y = 0.5 between two crossings (north-south streets through its ends). Next to
+  // the west crossing a cell of the crossing bulges a whole cell up (1.41 pw from the crossing's
+  // placement, within the inner radius), and smoothing left a jog in the middle of the street. Without
+  // the crossing's cells the street's placements are a straight line: it is drawn straight.
+  RoadGraph g;
+  std::vector<Vec2> points{{0.5, 0.5}, {1.5, 1.5}};
+  for (int k = 2; k <= 20; ++k) points.push_back({k + 0.5, 0.5});
+  const std::vector<int> ids = path(g, points);
+  for (int end : {ids.front(), ids.back()}) {
+    const Vec2 at = g.nodes[end].placed;
+    std::vector<Vec2> north, south;
+    for (int k = 1; k <= 6; ++k) {
+      north.push_back(at + Vec2(0, k));
+      south.push_back(at - Vec2(0, k));
+    }
+    path(g, north, end);
+    path(g, south, end);
+  }
+  g.nodes[ids[10]].p.y = 0.8;
+  RoadGraph whole = g;
+  ThroughRoadOptions options;
+  options.innerRadius = 1.0;  // the bulging cell counts as the street's
+  straightenThroughRoads(whole, options);
+  EXPECT_DOUBLE_EQ(whole.nodes[ids[10]].p.y, 0.8);
+  straightenThroughRoads(g, {});
+  EXPECT_NEAR(g.nodes[ids[10]].p.y, 0.5, 1e-9);
+}
+
+TEST(ThroughRoads, ApproachThatCurvesBeforeItsAnchorKeepsItsCurve) {
+  // A T-junction: a street along y = 0 through (0, 0) and a stem going north on x = 0 for 5 pw, then
+  // curving east. The first stem node beyond the window (1, 6) anchors the approach; the stem's
+  // cells up to it are no straight line, so the approach is drawn straight only up to (0, 5).
+  RoadGraph g;
+  const int centre = g.addNode({0, 0}, NodeType::Secondary);
+  std::vector<Vec2> east, west;
+  for (int k = 1; k <= 8; ++k) {
+    east.push_back({static_cast<double>(k), 0});
+    west.push_back({-static_cast<double>(k), 0});
+  }
+  path(g, east, centre);
+  path(g, west, centre);
+  const std::vector<int> stem =
+      path(g, {{0, 1}, {0, 2}, {0, 3}, {0, 4}, {0, 5}, {1, 6}, {2, 6.6}, {3, 7}, {4, 7.2}}, centre);
+  RoadGraph curving = g;
+  straightenThroughRoads(curving, {});
+  EXPECT_DOUBLE_EQ(curving.nodes[stem[4]].p.x, 0.0);
+  // Drawing every approach straight cuts the curve: (0, 5) moves onto the piece to (1, 6).
+  ThroughRoadOptions every;
+  every.straightApproachesOnly = false;
+  straightenThroughRoads(g, every);
+  EXPECT_NEAR(g.nodes[stem[4]].p.x, 30.0 / 37.0, 1e-9);  // its projection onto the piece
+}
+
 TEST(ThroughRoads, TJunctionStemMeetsTheThroughRoadAtItsOwnAngleWithoutAHook) {
   // A through road along y = 0 and a stem leaving (0, 0) at 60 degrees whose first node hooks
   // towards the east, as the cells of a junction pull it.
