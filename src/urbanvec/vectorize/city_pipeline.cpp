@@ -119,6 +119,10 @@ class BoxIndex {
   std::vector<std::vector<int>> buckets_;
 };
 
+bool lexicographicLess(const Vec2& a, const Vec2& b) {
+  return a.x < b.x || (a.x == b.x && a.y < b.y);
+}
+
 /// The parts of each block's outline that run along pavement: the road frontage E2 measures. Per
 /// block, the pavement pieces near it (envelope within the envelope of the block buffered by ten
 /// tolerances, and the piece itself within ten tolerances of the block) are buffered together by the
@@ -131,14 +135,16 @@ std::vector<MultiLineString> roadFacingEdges(const BlocksResult& blocks, const F
   geos::Context ctx;
   std::vector<geos::GeomPtr> pavement;
   std::vector<Box> boxes;
+  std::vector<Ring> outlines;  // each piece's outer ring, for the shared-corner test below
   for (const Feature& f : blocks.pavement.features) {
     MultiPolygon parts;
     if (const auto* p = std::get_if<Polygon>(&f.geometry)) parts.push_back(*p);
     if (const auto* mp = std::get_if<MultiPolygon>(&f.geometry)) parts = *mp;
     for (const Polygon& p : parts) {
-      const Polygon cells = frame.toCells(p);
+      Polygon cells = frame.toCells(p);
       boxes.emplace_back(cells.outer);
       pavement.push_back(ctx.polygon(cells));
+      outlines.push_back(std::move(cells.outer));
     }
   }
   const BoxIndex index(boxes);
@@ -148,6 +154,7 @@ std::vector<MultiLineString> roadFacingEdges(const BlocksResult& blocks, const F
   std::vector<std::vector<int>> seen(workers.size());
   std::vector<std::vector<int>> candidates(workers.size());
   std::vector<std::vector<int>> nears(workers.size());
+  std::vector<std::vector<Vec2>> corners(workers.size());
   workers.run(n, [&](size_t i, size_t w, const geos::Context& c) {
     GEOSContextHandle_t h = c.handle();
     const BlockInfo& info = blocks.blockInfo[i];
@@ -177,16 +184,33 @@ std::vector<MultiLineString> roadFacingEdges(const BlocksResult& blocks, const F
     }
     // Only pieces within ten tolerances of the block can reach its outline with a band one tolerance
     // wide; the rest only made the band's buffer costlier.
+    // A piece with a corner on a corner of the block is at distance 0: most of them, since the block's
+    // outline is made of the pieces' edges. Only the others need GEOS's distance test.
     if (!near.empty()) {
-      const GEOSPreparedGeometry* prepared = GEOSPrepare_r(h, block.get());
-      if (!prepared) throw internalError("GEOS failed to prepare a block: " + c.lastError());
+      std::vector<Vec2>& blockCorners = corners[w];
+      blockCorners.assign(info.shape.outer.begin(), info.shape.outer.end());
+      for (const Ring& hole : info.shape.holes)
+        blockCorners.insert(blockCorners.end(), hole.begin(), hole.end());
+      std::sort(blockCorners.begin(), blockCorners.end(), lexicographicLess);
+      auto sharesACorner = [&](int k) {
+        for (const Vec2& p : outlines[static_cast<size_t>(k)])
+          if (std::binary_search(blockCorners.begin(), blockCorners.end(), p, lexicographicLess)) return true;
+        return false;
+      };
+      const GEOSPreparedGeometry* prepared = nullptr;
       size_t kept = 0;
-      for (int k : near)
-        if (GEOSPreparedDistanceWithin_r(h, prepared, pavement[static_cast<size_t>(k)].get(),
-                                         10.0 * tolerance) == 1)
-          near[kept++] = k;
+      for (int k : near) {
+        bool within = sharesACorner(k);
+        if (!within) {
+          if (!prepared) prepared = GEOSPrepare_r(h, block.get());
+          if (!prepared) throw internalError("GEOS failed to prepare a block: " + c.lastError());
+          within = GEOSPreparedDistanceWithin_r(h, prepared, pavement[static_cast<size_t>(k)].get(),
+                                                10.0 * tolerance) == 1;
+        }
+        if (within) near[kept++] = k;
+      }
       near.resize(kept);
-      GEOSPreparedGeom_destroy_r(h, prepared);
+      if (prepared) GEOSPreparedGeom_destroy_r(h, prepared);
     }
     if (near.empty()) return;
     std::vector<geos::GeomPtr> parts;
@@ -200,10 +224,6 @@ std::vector<MultiLineString> roadFacingEdges(const BlocksResult& blocks, const F
     out[i] = c.toLines(merged.get());
   });
   return out;
-}
-
-bool lexicographicLess(const Vec2& a, const Vec2& b) {
-  return a.x < b.x || (a.x == b.x && a.y < b.y);
 }
 
 /// Rotates a ring to start at its smallest vertex (x, then y), keeping its orientation and closure.

@@ -86,4 +86,8 @@ TEST(TopologySimplify, InteriorContactOfSegments) {
   EXPECT_FALSE(segmentsMeetInside({0, 0}, {2, 0}, {2, 0}, {0, 0}));  // the same segment
   EXPECT_FALSE(segmentsMeetInside({0, 0}, {2, 0}, {2, 0}, {3, 0}));  // collinear, end to end
   EXPECT_FALSE(segmentsMeetInside({0, 0}, {2, 0}, {0, 1}, {2, 1}));  // parallel
+  // Collinear from a common end, off the axes: every orientation is exactly 0 (two of them because
+  // two points are equal), so the segments overlap along their length.
+  EXPECT_TRUE(segmentsMeetInside({0, 0}, {2, 6}, {0, 0}, {1, 3}));
+  EXPECT_TRUE(segmentsMeetInside({0, 0}, {2, 6}, {2, 6}, {1, 3}));
 }

@@ -6,6 +6,7 @@
 #include <map>
 #include <string>
 
+#include "urbanvec/core/cell_regions.hpp"
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/core/geos.hpp"
 #include "urbanvec/vectorize/blocks/block_outline.hpp"
@@ -133,31 +134,22 @@ MultiPolygon waterPolygons(const Grid<LandUse>& landUse, const WaterSplitOptions
                         std::to_string(options.resampleSpacing) + " cells.");
   reportProgress(progress, 0.0, "water");
   geos::Context ctx;
-  const int dx = landUse.frameDx, h = landUse.frameDy + landUse.height;  // a window's frame (issue 22)
-  // Horizontal runs of water cells as rectangles: far fewer union inputs than single cells.
-  std::vector<geos::GeomPtr> runs;
-  for (int row = 0; row < landUse.height; ++row) {
-    int col = 0;
-    while (col < landUse.width) {
-      if (landUse.at(col, row) != LandUse::Water) {
-        ++col;
-        continue;
-      }
-      const int start = col;
-      while (col < landUse.width && landUse.at(col, row) == LandUse::Water) ++col;
-      const double y0 = h - row - 1, y1 = h - row;
-      const double x0 = dx + start, x1 = dx + col;
-      runs.push_back(ctx.polygon(Polygon{{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}, {x0, y0}}, {}}));
-    }
-  }
-  if (runs.empty()) {
+  // The water cells' regions traced along the cell edges: linear in the grid, where a union of the
+  // cells' row runs on the precision grid cost an overlay per pair of runs (issue 21).
+  Grid<std::uint8_t> isWater(landUse.width, landUse.height, 0);
+  isWater.frameDx = landUse.frameDx;  // a window's frame (issue 22)
+  isWater.frameDy = landUse.frameDy;
+  bool any = false;
+  for (size_t i = 0; i < landUse.cells.size(); ++i)
+    if (landUse.cells[i] == LandUse::Water) isWater.cells[i] = 1, any = true;
+  if (!any) {
     reportProgress(progress, 1.0, "water");
     return {};
   }
-  geos::GeomPtr cells = unionOnGrid(ctx, std::move(runs), options.precisionGrid);
+  const MultiPolygon cells = cellRegions(isWater);
   reportProgress(progress, 0.5, "water");
   std::vector<geos::GeomPtr> smoothed;
-  for (const Polygon& p : ctx.toPolygons(cells.get())) {
+  for (const Polygon& p : cells) {
     Polygon s;
     auto chainEndOnGrid = [&](const Vec2& v) { return chainEnd(v, landUse); };
     s.outer = smoothClosedRing(p.outer, options.smoothingPasses, options.resampleSpacing, chainEndOnGrid);

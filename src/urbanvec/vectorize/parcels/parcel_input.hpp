@@ -87,10 +87,15 @@ struct PolygonMoments {
   double sxx = 0.0, syy = 0.0, sxy = 0.0;  ///< central second moments divided by area, cells²
 };
 
-inline PolygonMoments polygonMoments(const Polygon& polygon) {
+/// `ringAreas`, when given, holds signedArea() of the outer ring and then of each hole, so a caller
+/// that already has them saves a pass over the rings.
+inline PolygonMoments polygonMoments(const Polygon& polygon, const double* ringAreas = nullptr) {
   double a = 0.0, mx = 0.0, my = 0.0, ixx = 0.0, iyy = 0.0, ixy = 0.0;
+  size_t ringIndex = 0;
   auto addRing = [&](const Ring& ring, double sign) {
-    const double orientation = signedArea(ring) >= 0.0 ? sign : -sign;
+    const double ringArea = ringAreas ? ringAreas[ringIndex] : signedArea(ring);
+    ++ringIndex;
+    const double orientation = ringArea >= 0.0 ? sign : -sign;
     for (size_t i = 0; i + 1 < ring.size(); ++i) {
       const Vec2& p = ring[i];
       const Vec2& q = ring[i + 1];
@@ -122,9 +127,9 @@ inline PolygonMoments polygonMoments(const Polygon& polygon) {
 }
 
 /// PCA oriented bounding box: principal axis of the area-weighted covariance, extents of the outer
-/// ring projected on both axes (spec D1; §11.4 check 28).
-inline OrientedBox orientedBox(const Polygon& polygon) {
-  const PolygonMoments m = polygonMoments(polygon);
+/// ring projected on both axes (spec D1; §11.4 check 28). `ringAreas` as for polygonMoments().
+inline OrientedBox orientedBox(const Polygon& polygon, const double* ringAreas = nullptr) {
+  const PolygonMoments m = polygonMoments(polygon, ringAreas);
   // The principal axis is at angle θ with (cos 2θ, sin 2θ) ∝ (sxx - syy, 2 sxy); the half-angle
   // formulas give cos θ and sin θ (θ in (-π/2, π/2], as 0.5·atan2 gives) without atan2/cos/sin, since
   // the split loop of E2 calls this for every child of every try. The larger of the two halves is

@@ -271,10 +271,24 @@ SplitVerdict checkSplit(const Polygon& parent, const Polygon& a, const Polygon& 
 
 SplitVerdict checkSplit(double parentArea, double parentAspect, const Polygon& a, const Polygon& b,
                         const SplitRules& rules, const RoadFrontage& frontage) {
-  const double areaA = area(a), areaB = area(b), areaP = parentArea;
+  // Each ring's signed area once: the children's areas (as area() sums them) and the orientation their
+  // second moments need.
+  thread_local std::vector<double> ringsA, ringsB;
+  auto ringAreas = [](const Polygon& p, std::vector<double>& rings) {
+    rings.clear();
+    rings.push_back(signedArea(p.outer));
+    double total = std::fabs(rings.back());
+    for (const Ring& hole : p.holes) {
+      rings.push_back(signedArea(hole));
+      total -= std::fabs(rings.back());
+    }
+    return total;
+  };
+  const double areaA = ringAreas(a, ringsA), areaB = ringAreas(b, ringsB), areaP = parentArea;
   if (areaA < rules.minArea || areaB < rules.minArea || areaA <= 0.0 || areaB <= 0.0)
     return SplitVerdict::TooSmall;
-  const double aspectA = aspectOf(a), aspectB = aspectOf(b);
+  const double aspectA = orientedBox(a, ringsA.data()).aspect(),
+               aspectB = orientedBox(b, ringsB.data()).aspect();
   if (rules.compareParentAspect) {
     const bool ok = parentAspect >= rules.aspectThreshold
                         ? (aspectA >= parentAspect && aspectB >= parentAspect)
