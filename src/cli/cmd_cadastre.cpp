@@ -103,6 +103,14 @@ app::CommandSpec spec() {
           .byDefault(app::numberText(d.straightenShare))
           .atLeast(0)
           .isAdvanced());
+  o.push_back(option("-merge-split", ValueType::Real, "<noise units>",
+                     "Merge two vertices closer than this many times the drawing's estimated noise when no "
+                     "drawn segment joins them, no face but a sliver collapses and no crossing is created "
+                     "(copies of one drawn vertex split over several); clean drawings are left alone; 0 "
+                     "disables.")
+                  .byDefault(app::numberText(d.mergeSplit))
+                  .atLeast(0)
+                  .isAdvanced());
   o.push_back(option("-no-adjust", ValueType::Flag, "",
                      "Place each vertex at the mean of its drawn copies, without the least-squares "
                      "adjustment (straight lines, right angles, ends off along their line).")
@@ -250,6 +258,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   options.freeEndsOnly = !args.flag("-collapse-all");
   options.closestFirst = !args.flag("-drawing-order") && !options.thesisRevert;
   options.straightenShare = args.real("-straighten");
+  options.mergeSplit = args.real("-merge-split");
   options.adjust = !args.flag("-no-adjust");
   options.straightAngle = args.real("-straight-angle");
   options.rightAngle = args.real("-right-angle");
@@ -476,6 +485,14 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
       "short last edges folding back on their line, the line ended at the fold");
   row("fringe_edges_removed", n(rep.fringeEdgesRemoved), "removed fringe paths (edges)");
   row("vertices_straightened", n(rep.verticesStraightened), "degree-2 vertices dropped on straight lines");
+  row("split_vertices_merged", n(rep.splitVerticesMerged),
+      "vertices closer than -merge-split noise units merged (copies of one drawn vertex)");
+  row("merges_refused_drawn", n(rep.mergesRefusedDrawn),
+      "close vertices kept apart: a drawn segment joins them");
+  row("merges_refused_face", n(rep.mergesRefusedFace),
+      "close vertices kept apart: a real face would collapse");
+  row("merges_refused_crossing", n(rep.mergesRefusedCrossing),
+      "close vertices kept apart: the merge would make segments cross");
   row("adjustment_noise", rep.adjustmentNoise,
       "estimated spread (m) of the drawn copies across their segments (adjustment weights)");
   row("straight_constraints", n(rep.straightConstraints), "adjustment: vertices kept on a straight line");

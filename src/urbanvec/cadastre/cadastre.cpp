@@ -14,6 +14,7 @@
 #include "urbanvec/cadastre/pre_blocks.hpp"
 #include "urbanvec/cadastre/segment_cleaning.hpp"
 #include "urbanvec/cadastre/vertex_collapsing.hpp"
+#include "urbanvec/cadastre/vertex_merging.hpp"
 #include "urbanvec/core/error.hpp"
 
 namespace urbanvec::cadastre {
@@ -104,6 +105,18 @@ CadastreResult structureCadastre(const std::vector<CadLine>& lines, const std::v
   cleanSegments(lw, o.collapsingThreshold, ss, subProgress(progress, 0.15, 0.25));
   rep.duplicateSegments = ss.duplicateSegments;
   rep.verticesOnSegments = ss.verticesOnSegments;
+  // Split vertices: the copies of one drawn vertex left on several vertices merge (noisy drawings only).
+  if (o.mergeSplit > 0.0) {
+    const double noise = copyNoise(lw);
+    if (noise > kCleanNoise) {
+      MergeStats ms;
+      mergeSplitVertices(lw, o.mergeSplit * noise, o.sliverWidth, ms);
+      rep.splitVerticesMerged = ms.merged;
+      rep.mergesRefusedDrawn = ms.refusedDrawn;
+      rep.mergesRefusedFace = ms.refusedFace;
+      rep.mergesRefusedCrossing = ms.refusedCrossing;
+    }
+  }
   // Geometric adjustment: computed now, applied to the output polygons at the end, so that every
   // topological decision below (gap repair, circuits, slivers, labels) is taken on the means of the
   // copies as before and only the vertices' positions change.

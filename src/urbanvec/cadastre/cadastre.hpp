@@ -38,6 +38,10 @@ struct CadastreReport {
   std::size_t duplicateSegments = 0, verticesOnSegments = 0;
   std::size_t cornersClosed = 0, undershootsToSegment = 0, undershootsToVertex = 0, overshootsCut = 0,
               hooksCut = 0, fringeEdgesRemoved = 0, verticesStraightened = 0;
+  /// Split vertices merged (vertex_merging.hpp), and the refusals: a drawn segment between them, a
+  /// real face collapsing, a crossing created.
+  std::size_t splitVerticesMerged = 0, mergesRefusedDrawn = 0, mergesRefusedFace = 0,
+              mergesRefusedCrossing = 0;
   /// Geometric adjustment: the drawing's noise estimate (m), constraints, vertices moved.
   double adjustmentNoise = 0.0;
   std::size_t straightConstraints = 0, rightAngleConstraints = 0, verticesAdjusted = 0;

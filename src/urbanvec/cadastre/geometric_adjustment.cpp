@@ -11,8 +11,6 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 /// Vertices with more neighbours than this get no constraint (a pile of lines on one spot).
 constexpr std::size_t kMaxConstrainedDegree = 8;
-/// Below this noise estimate (m) the drawing is clean (its copies coincide) and is not adjusted.
-constexpr double kCleanNoise = 1e-3;
 
 Vec2 perpendicular(const Vec2& t) {
   return {-t.y, t.x};
@@ -149,6 +147,25 @@ double median(std::vector<double> v) {
 
 }  // namespace
 
+double copyNoise(const Linework& lw) {
+  // Spread of the copies across their own segments around their vertex's position (robust: 1.4826
+  // times the median, each residual scaled up by sqrt(k / (k - 1)) for the k copies that made the mean).
+  std::vector<int> copiesOf(lw.vertices.size(), 0);
+  for (const EndCopy& c : lw.copies)
+    if (c.vertex != c.other && c.vertex >= 0 && c.other >= 0) ++copiesOf[static_cast<std::size_t>(c.vertex)];
+  std::vector<double> across;
+  for (const EndCopy& c : lw.copies) {
+    if (c.vertex == c.other || c.vertex < 0 || c.other < 0) continue;
+    const int k = copiesOf[static_cast<std::size_t>(c.vertex)];
+    const Vec2 v = lw.vertices[static_cast<std::size_t>(c.vertex)];
+    const Vec2 d = lw.vertices[static_cast<std::size_t>(c.other)] - v;
+    const double len = length(d);
+    if (k < 2 || !(len > 0)) continue;
+    across.push_back(std::abs(dot(perpendicular(d / len), c.p - v)) * std::sqrt(k / (k - 1.0)));
+  }
+  return 1.4826 * median(std::move(across));
+}
+
 std::vector<Vec2> adjustedVertices(const Linework& lw, const AdjustmentOptions& o, AdjustmentStats& stats) {
   stats = {};
   std::vector<Vec2> result = lw.vertices;
@@ -174,20 +191,7 @@ std::vector<Vec2> adjustedVertices(const Linework& lw, const AdjustmentOptions& 
     t = d / len;
     return true;
   };
-  // The drawing's noise: spread of the copies across their own segments around their vertex's mean
-  // (robust: 1.4826 times the median, each residual scaled up by sqrt(k / (k - 1)) for the k copies
-  // that made the mean).
-  {
-    std::vector<double> across;
-    for (const EndCopy& c : copies) {
-      const int k = copiesOf[static_cast<std::size_t>(c.vertex)];
-      Vec2 t;
-      if (k < 2 || !frame(c, t)) continue;
-      across.push_back(std::abs(dot(perpendicular(t), c.p - pos[static_cast<std::size_t>(c.vertex)])) *
-                       std::sqrt(k / (k - 1.0)));
-    }
-    stats.noise = 1.4826 * median(std::move(across));
-  }
+  stats.noise = copyNoise(lw);
   // A clean drawing (most copies coincide) keeps its vertices: the fit could only undo the cleaning's
   // repairs (an undershot end moved onto the segment it stops short of).
   if (!(stats.noise > kCleanNoise)) return result;

@@ -44,6 +44,14 @@ struct AdjustmentStats {
   std::size_t shiftsRefused = 0;  ///< vertices kept at their mean by maxShift
 };
 
+/// The drawing's noise (m): the robust standard deviation of the drawn copies across their own segments
+/// around their vertex (1.4826 times the median residual, scaled for the copies that made the mean);
+/// under 1 mm when the copies coincide (a clean drawing).
+double copyNoise(const Linework& linework);
+
+/// Below this noise estimate (m) the drawing is clean (its copies coincide).
+constexpr double kCleanNoise = 1e-3;
+
 /// The positions of `linework.vertices` at the least-squares fit of `linework.copies`: each copy observes its
 /// vertex across its own segment with full weight and along it with a Huber weight (an over- or
 /// undershot end is off along its line only), plus the soft straight and right-angle constraints

@@ -94,6 +94,12 @@ struct CadastreOptions {
   /// degrees of 90 square (0 disables either). Measured on the sample's L2 drawings (5 seeds):
   /// building-part recall 0.785 against 0.744 with the mean of the copies (docs/cadastre.md).
   bool adjust = true;
+  /// Beyond the thesis (vertex_merging.hpp): after collapsing and segment cleaning, two vertices closer
+  /// than this many times the drawing's noise (copyNoise) merge when no drawn segment joins them, no
+  /// face but a sliver collapses and no crossing is created: the jittered copies of one drawn vertex
+  /// split over several vertices become one again. A clean drawing (noise under 1 mm) is left as it
+  /// is; 0 disables.
+  double mergeSplit = 3.0;
   double straightAngle = 10.0;
   double rightAngle = 10.0;
   /// Faces smaller than this (m²) are slivers between nearly coincident lines and are dropped.

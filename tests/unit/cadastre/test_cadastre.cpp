@@ -12,6 +12,7 @@
 #include "urbanvec/cadastre/pre_blocks.hpp"
 #include "urbanvec/cadastre/segment_cleaning.hpp"
 #include "urbanvec/cadastre/vertex_collapsing.hpp"
+#include "urbanvec/cadastre/vertex_merging.hpp"
 #include "urbanvec/core/error.hpp"
 
 namespace urbanvec::cadastre {
@@ -289,6 +290,81 @@ TEST(GeometricAdjustment, FitBeatsTheMeanOfTheCopies) {
   EXPECT_LT(unconstrained, 0.99 * before);
   plain.huber = 1e9;  // plain least squares: the mean of the copies again
   EXPECT_NEAR(cornerError(corners, adjustedVertices(lw, plain, as)), before, 0.02 * before);
+}
+
+/// A segment a-b drawn once, with its two ends as copies at the vertices' positions.
+void drawSegment(Linework& lw, int a, int b) {
+  lw.segments.push_back({a, b, kBuildingLayer});
+  lw.copies.push_back({a, b, lw.vertices[static_cast<size_t>(a)]});
+  lw.copies.push_back({b, a, lw.vertices[static_cast<size_t>(b)]});
+}
+
+/// A 10 m square whose corner (0, 0) is split over vertex 0 (end of the bottom side) and vertex 4 (end
+/// of the left side), 0.16 m apart.
+Linework splitCornerSquare() {
+  Linework lw;
+  lw.vertices = {{0.05, 0.1}, {10, 0}, {10, 10}, {0, 10}, {-0.1, -0.02}};
+  drawSegment(lw, 0, 1);
+  drawSegment(lw, 1, 2);
+  drawSegment(lw, 2, 3);
+  drawSegment(lw, 3, 4);
+  return lw;
+}
+
+TEST(VertexMerging, CopiesOfOneCornerBecomeOneVertex) {
+  Linework lw = splitCornerSquare();
+  MergeStats ms;
+  mergeSplitVertices(lw, 0.5, 0.34, ms);
+  EXPECT_EQ(ms.merged, 1u);
+  ASSERT_EQ(lw.vertices.size(), 4u);
+  EXPECT_EQ(lw.segments.size(), 4u);
+  // At the mean of the copies of both (one copy each).
+  EXPECT_LT(distance(lw.vertices[0], Vec2{-0.025, 0.04}), 1e-9);
+  for (const Segment& s : lw.segments) EXPECT_TRUE(s.a >= 0 && s.a < 4 && s.b >= 0 && s.b < 4 && s.a != s.b);
+  for (const EndCopy& c : lw.copies) EXPECT_TRUE(c.vertex >= 0 && c.vertex < 4 && c.other != c.vertex);
+  // Every vertex has two segments: the square is closed at the corner.
+  std::vector<int> degree(4, 0);
+  for (const Segment& s : lw.segments) ++degree[static_cast<size_t>(s.a)], ++degree[static_cast<size_t>(s.b)];
+  EXPECT_EQ(degree, (std::vector<int>{2, 2, 2, 2}));
+  // Farther apart than the merge distance: left alone.
+  Linework far = splitCornerSquare();
+  mergeSplitVertices(far, 0.1, 0.34, ms);
+  EXPECT_EQ(ms.merged, 0u);
+  EXPECT_EQ(far.vertices.size(), 5u);
+}
+
+TEST(VertexMerging, TrueShortEdgesFacesAndCrossingsAreKept) {
+  // A drawn segment between them: a true short edge of the drawing, kept.
+  Linework edge = splitCornerSquare();
+  drawSegment(edge, 4, 0);
+  MergeStats ms;
+  mergeSplitVertices(edge, 0.5, 0.34, ms);
+  EXPECT_EQ(ms.merged, 0u);
+  EXPECT_EQ(ms.refusedDrawn, 1u);
+  EXPECT_EQ(edge.vertices.size(), 5u);
+  // Both joined to one vertex 3 m away, 0.4 m apart: a wedge wider than a sliver, kept.
+  Linework wedge;
+  wedge.vertices = {{0, 0}, {0.4, 0}, {0.2, 3}};
+  drawSegment(wedge, 0, 2);
+  drawSegment(wedge, 1, 2);
+  mergeSplitVertices(wedge, 0.5, 0.34, ms);
+  EXPECT_EQ(ms.merged, 0u);
+  EXPECT_EQ(ms.refusedFace, 1u);
+  // The same wedge 0.1 m wide is a sliver: merged into one line.
+  wedge.vertices[1] = {0.1, 0};
+  mergeSplitVertices(wedge, 0.5, 0.34, ms);
+  EXPECT_EQ(ms.merged, 1u);
+  EXPECT_EQ(wedge.segments.size(), 1u);
+  // Merging at (0.2, 0) would swing the segment up from (0.4, 0) across the segment (0.1..0.3, 0.5).
+  Linework crossing;
+  crossing.vertices = {{0, 0}, {0, -5}, {0.4, 0}, {0.4, 5}, {0.1, 0.5}, {0.3, 0.5}};
+  drawSegment(crossing, 0, 1);
+  drawSegment(crossing, 2, 3);
+  drawSegment(crossing, 4, 5);
+  mergeSplitVertices(crossing, 0.5, 0.34, ms);
+  EXPECT_EQ(ms.merged, 0u);
+  EXPECT_EQ(ms.refusedCrossing, 1u);
+  EXPECT_EQ(crossing.vertices.size(), 6u);
 }
 
 TEST(GeometricAdjustment, CleanDrawingDoesNotMove) {
