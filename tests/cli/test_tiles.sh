@@ -20,9 +20,9 @@ digest_of() { local f=$1; shift; local out; out=$(/usr/bin/python3 "$TILES" dige
 ALL=(roads road_nodes pavement blocks water spines parcels vectorize_report)
 
 # A single run, and the windowed read matches it: -srcwin of the whole grid gives the same bytes.
-run_cmd vectorize -q -no-through-roads "${IN[@]:0:6}" "$D/landuse.tif" "$WORK/single.gpkg"
+run_cmd vectorize -q "${IN[@]:0:6}" "$D/landuse.tif" "$WORK/single.gpkg"
 expect_status 0
-run_cmd vectorize -q -no-through-roads -srcwin 0 0 98 107 "${IN[@]:0:6}" "$D/landuse.tif" "$WORK/whole.gpkg"
+run_cmd vectorize -q -srcwin 0 0 98 107 "${IN[@]:0:6}" "$D/landuse.tif" "$WORK/whole.gpkg"
 expect_status 0
 expect_eq "$(digest_of "$WORK/whole.gpkg" roads parcels)" "$(digest_of "$WORK/single.gpkg" roads parcels)" "-srcwin of the whole grid"
 # A window is georeferenced at its place: its extent lies inside the single run's.
@@ -61,7 +61,7 @@ expect_eq "$(digest_of "$WORK/dask.gpkg" "${ALL[@]}")" "$(digest_of "$WORK/seq.g
 # gave a few intersections other near-duplicate vertices, and the blocks and parcels next to them).
 M="$SAMPLE_DIR/monaco"
 MIN=(-density "$M/density.tif" -parcels "$M/parcels.tif" -parcel-table "$M/parcels.csv" "$M/landuse.tif")
-run_cmd vectorize -q -no-through-roads "${MIN[@]:0:6}" "$M/landuse.tif" "$WORK/monaco.gpkg"
+run_cmd vectorize -q "${MIN[@]:0:6}" "$M/landuse.tif" "$WORK/monaco.gpkg"
 expect_status 0
 run_tiles run --sequential -q -tile 200 -halo 64 -max-halo 256 "${MIN[@]}" "$WORK/monaco_tiled.gpkg"
 expect_status 0
