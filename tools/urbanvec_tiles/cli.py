@@ -164,11 +164,10 @@ def check_scheduler(address, timeout):
 
 def run(argv):
     opts, vargs, (landuse, output) = parse_run(argv)
-    # Stage B7 (through roads and straight roads) decides on whole chains between intersections, which a
-    # window may cut anywhere: it is not tile-local, so tiles run without it and a tiled run equals
-    # `urbanvec vectorize -no-through-roads` (docs/scale.md).
-    if "-no-through-roads" not in vargs:
-        vargs.append("-no-through-roads")
+    # Stage B7 (through roads and straight roads) runs in the tiles as in a single run: it decides per
+    # chain between intersections, and the halo guard redoes a tile whose kept road line (a chain) runs
+    # out of its window (docs/scale.md, "Stage B7 in tiles"). `-no-through-roads` is passed on like any
+    # vectorize option.
     quiet = bool(opts.get("-q"))
     progress = Progress(quiet, opts.get("-progress") == "lines")
     tile_cells = integer(opts, "-tile")

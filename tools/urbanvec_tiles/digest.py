@@ -39,8 +39,13 @@ def _drop_collinear(pts, closed, tol=1e-7):
 
 
 def normalized(g):
-    """A normalized copy: collinear vertices removed, GEOS Normalize."""
+    """A normalized copy: GEOS Normalize, collinear vertices removed, GEOS Normalize again. The first
+    Normalize fixes each ring's start, so the removal (greedy, from the start) does not depend on where
+    the writer began the ring."""
     g = g.Clone()
+    first = g.Normalize()
+    if first is not None:
+        g = first
 
     def fix(h):
         if h.GetGeometryCount() > 0:
@@ -173,11 +178,25 @@ def compare(a, b, tol=1e-6):
         # Match by attribute text and nearest representative point (within 1 cm).
         # Candidates bucketed by attributes and a 5 cm cell of their point (linear, not quadratic, in
         # the features of a layer); a point within 2 cm lies in one of the 3 x 3 cells around.
+        # Features with the same canonical text are equal and matched first, so that two small
+        # features whose points lie within 2 cm of each other are not paired crosswise.
+        same_text = {}
+        for r in rb:
+            same_text[r[1]] = same_text.get(r[1], 0) + 1
+        rest_a = []
+        for r in ra:
+            if same_text.get(r[1], 0) > 0:
+                same_text[r[1]] -= 1
+            else:
+                rest_a.append(r)
         pool = {}
         for r in rb:
+            if same_text.get(r[1], 0) <= 0:
+                continue
+            same_text[r[1]] -= 1
             pool.setdefault((r[0][1], math.floor(r[0][2] / 0.05), math.floor(r[0][3] / 0.05)), []).append(r)
         worst, unmatched = 0.0, 0
-        for r in ra:
+        for r in rest_a:
             best, bd, home = None, None, None
             cx, cy = math.floor(r[0][2] / 0.05), math.floor(r[0][3] / 0.05)
             for i in (cx - 1, cx, cx + 1):

@@ -195,9 +195,12 @@ def extract(path, tile, window, frame, roads_only, opened=None):
                 # Each piece keeps its cut: the stretches of its boundary that the clip made (on a
                 # seam, not on the feature's own boundary). The stitcher joins pieces whose cuts
                 # overlap, so two features that merely touch along a seam stay two.
+                # The clip's points on a seam are moved onto it exactly (GEOS computes them to a few
+                # ulps); a vertex of the feature itself is never that close to a seam without being on
+                # it: vertices lie on the precision grid (1e-6 cells), so one tenth of that is the limit.
                 own = gu.GetBoundary().Buffer(1e-7 * frame.cell)
                 for piece in kept:
-                    G.snap_to_seams(piece, seams_x, seams_u, 1e-9 * max(1.0, abs(core_rect.GetEnvelope()[0])))
+                    G.snap_to_seams(piece, seams_x, seams_u, 1e-7 * frame.cell)
                     cut = piece.GetBoundary().Intersection(seam_lines).Difference(own)
                     out[name].append((G.to_u(piece, s).ExportToWkb(), attrs, G.to_u(cut, s).ExportToWkb()))
 

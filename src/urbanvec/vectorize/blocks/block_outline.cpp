@@ -2,6 +2,7 @@
 #include "urbanvec/vectorize/blocks/block_outline.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "urbanvec/core/error.hpp"
@@ -96,16 +97,27 @@ int absorbSlivers(std::vector<PavementPiece>& pavement, const MultiPolygon& sliv
   GeometryIndex index(ctx, raw);
   std::vector<std::vector<geos::GeomPtr>> additions(pavement.size());
   int absorbed = 0;
+  // The envelope of each piece: its place in the order that picks a sliver's piece.
+  std::vector<std::array<double, 5>> key(pavement.size());
+  for (size_t k = 0; k < pavement.size(); ++k) {
+    GEOSGeom_getXMin_r(ctx.handle(), raw[k], &key[k][0]);
+    GEOSGeom_getYMin_r(ctx.handle(), raw[k], &key[k][1]);
+    GEOSGeom_getXMax_r(ctx.handle(), raw[k], &key[k][2]);
+    GEOSGeom_getYMax_r(ctx.handle(), raw[k], &key[k][3]);
+    key[k][4] = geosArea(ctx, raw[k]);
+  }
   for (const Polygon& sliver : slivers) {
     geos::GeomPtr g = ctx.polygon(sliver);
+    int best = -1;
     for (int k : index.query(g.get())) {
       double d = 1.0;
       GEOSDistance_r(ctx.handle(), raw[k], g.get(), &d);
       if (d > 10.0 * precisionGrid) continue;
-      additions[k].push_back(std::move(g));
-      ++absorbed;
-      break;
+      if (best < 0 || key[k] < key[best]) best = k;
     }
+    if (best < 0) continue;
+    additions[best].push_back(std::move(g));
+    ++absorbed;
   }
   for (size_t k = 0; k < pavement.size(); ++k) {
     if (additions[k].empty()) continue;
@@ -128,7 +140,8 @@ BlockOutline outlineBlocks(const std::vector<PavementPiece>& pavement, const Blo
   const double grid = options.precisionGrid;
   std::vector<geos::GeomPtr> parts;
   for (const PavementPiece& piece : pavement) parts.push_back(ctx.multiPolygon(piece.shape));
-  geos::GeomPtr all = unionOnGrid(ctx, std::move(parts), grid);
+  const GeosWorkers workers(options.threads);
+  geos::GeomPtr all = frameAnchoredUnion(ctx, workers, std::move(parts), grid, options.unionSquare);
   BlockOutline out;
   out.pavementUnion = ctx.toPolygons(all.get());
   reportProgress(progress, 0.5, "block outlining");

@@ -10,6 +10,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <tuple>
 
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/vectorize/blocks/block_outline.hpp"
@@ -316,6 +317,68 @@ void GeosWorkers::run(size_t n, const std::function<void(size_t, size_t, const g
 geos::GeomPtr unionOnGrid(const geos::Context& context, std::vector<geos::GeomPtr> parts, double grid) {
   geos::GeomPtr all = context.collection(GEOS_GEOMETRYCOLLECTION, std::move(parts));
   return context.own(GEOSUnaryUnionPrec_r(context.handle(), all.get(), grid), "unary union");
+}
+
+geos::GeomPtr frameAnchoredUnion(const geos::Context& context, const GeosWorkers& workers,
+                                 std::vector<geos::GeomPtr> parts, double grid, double squareSize) {
+  if (!(squareSize > 0.0))
+    throw invalidOption("The union square must be positive, got " + std::to_string(squareSize) + " cells.");
+  // Square keys are shifted to be non-negative, so halving them reaches one root square from anywhere.
+  constexpr std::int64_t kKeyOffset = std::int64_t{1} << 40;
+  struct Item {
+    std::int64_t kx = 0, ky = 0;
+    double x0 = 0.0, y0 = 0.0, x1 = 0.0, y1 = 0.0, area = 0.0;
+    geos::GeomPtr geom;
+  };
+  std::vector<Item> items;
+  const GEOSContextHandle_t h = context.handle();
+  for (geos::GeomPtr& part : parts) {
+    if (!part || GEOSisEmpty_r(h, part.get())) continue;
+    Item item;
+    GEOSGeom_getXMin_r(h, part.get(), &item.x0);
+    GEOSGeom_getYMin_r(h, part.get(), &item.y0);
+    GEOSGeom_getXMax_r(h, part.get(), &item.x1);
+    GEOSGeom_getYMax_r(h, part.get(), &item.y1);
+    item.area = geosArea(context, part.get());
+    item.kx = static_cast<std::int64_t>(std::floor(item.x0 / squareSize)) + kKeyOffset;
+    item.ky = static_cast<std::int64_t>(std::floor(item.y0 / squareSize)) + kKeyOffset;
+    item.geom = std::move(part);
+    items.push_back(std::move(item));
+  }
+  if (items.empty()) return context.collection(GEOS_GEOMETRYCOLLECTION, {});
+  std::stable_sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
+    return std::tie(a.kx, a.ky, a.x0, a.y0, a.x1, a.y1, a.area) <
+           std::tie(b.kx, b.ky, b.x0, b.y0, b.x1, b.y1, b.area);
+  });
+  // OverlayNG keeps the lines of edges that snap rounding collapsed; the union of areas is the polygons.
+  auto unite = [grid](const geos::Context& c, geos::GeomPtr& into, geos::GeomPtr add) {
+    into = c.own(GEOSUnionPrec_r(c.handle(), into.get(), add.get(), grid), "union");
+    if (GEOSGeomTypeId_r(c.handle(), into.get()) == GEOS_GEOMETRYCOLLECTION)
+      into = c.multiPolygon(c.toPolygons(into.get()));
+  };
+  // Runs of equal key in `items` (sorted by key) are united in order into their first item.
+  auto uniteRuns = [&] {
+    std::vector<size_t> starts;
+    for (size_t i = 0; i < items.size(); ++i)
+      if (i == 0 || items[i].kx != items[i - 1].kx || items[i].ky != items[i - 1].ky) starts.push_back(i);
+    starts.push_back(items.size());
+    workers.run(starts.size() - 1, [&](size_t g, size_t, const geos::Context& c) {
+      for (size_t i = starts[g] + 1; i < starts[g + 1]; ++i)
+        unite(c, items[starts[g]].geom, std::move(items[i].geom));
+    });
+    std::vector<Item> next;
+    for (size_t g = 0; g + 1 < starts.size(); ++g) next.push_back(std::move(items[starts[g]]));
+    items = std::move(next);
+  };
+  uniteRuns();  // the squares
+  for (bool byX = true; items.size() > 1; byX = !byX) {
+    for (Item& item : items) (byX ? item.kx : item.ky) >>= 1;
+    std::stable_sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
+      return std::tie(a.kx, a.ky) < std::tie(b.kx, b.ky);
+    });
+    uniteRuns();
+  }
+  return std::move(items.front().geom);
 }
 
 double geosArea(const geos::Context& context, const GEOSGeometry* g) {

@@ -135,6 +135,17 @@ class GeosWorkers {
 
 /// Unary union of `parts` on the precision grid; an empty input gives an empty collection.
 geos::GeomPtr unionOnGrid(const geos::Context& context, std::vector<geos::GeomPtr> parts, double grid);
+/// Union of the polygonal `parts` on the precision grid whose vertices near a point depend only on
+/// the parts near that point, not on the rest of the input (issue 22: a window of the raster and the
+/// whole raster give the same union wherever both hold the same parts). GEOS's cascaded union groups
+/// its inputs by an STRtree over all of them, and every grouping snap-rounds the shared edges
+/// differently; here the grouping is fixed by the frame instead. Each part goes to the square of
+/// `squareSize` cells (anchored at the frame's origin) that holds the lower-left corner of its
+/// envelope; a square's parts are unioned one after another in the order of their envelopes; then
+/// neighbouring squares are merged pairwise, along x, then along y, level by level, by one fixed binary
+/// tree over the frame. The merges of a level are independent and run on `workers`.
+geos::GeomPtr frameAnchoredUnion(const geos::Context& context, const GeosWorkers& workers,
+                                 std::vector<geos::GeomPtr> parts, double grid, double squareSize);
 /// Polygonal area of a geometry (0 for empty or non-polygonal).
 double geosArea(const geos::Context& context, const GEOSGeometry* g);
 
