@@ -92,6 +92,18 @@ expect_status 1
 expect_stderr_contains "ERROR: scheduler 'tcp://127.0.0.1:9' does not answer"
 [ $(( $(date +%s) - start )) -le 10 ] || fail "the unreachable scheduler took more than 10 s to report"
 expect_missing "$WORK/bad.gpkg"
+# A worker out of disk (a file size limit of 200 KB: the tile's GeoPackage cannot be written): the tile
+# is named with the reason, and neither the output nor a work folder is left behind.
+set +e
+mkdir -p "$WORK/full"
+OUT=$( (ulimit -f 200 && exec /usr/bin/python3 "$TILES" run --sequential -q -tile 50 -halo 16 -max-halo 64 \
+  "${IN[@]}" "$WORK/full/out.gpkg") 2>"$WORK/.stderr")
+STATUS=$?
+set -e
+ERR=$(cat "$WORK/.stderr")
+expect_status 1
+expect_stderr_contains "ERROR: tile r000_c000 (window 0 0 72 78): urbanvec vectorize failed (killed by SIGXFSZ: file size limit reached"
+[ -z "$(ls -A "$WORK/full" 2>/dev/null)" ] || fail "out of disk left files behind: $(ls -A "$WORK/full")"
 
 # A worker killed mid-run: its tile is retried elsewhere and the result is the same.
 export URBANVEC_FAULT=write-delay-ms=300

@@ -34,6 +34,23 @@ class TileError(Exception):
     """A tile that cannot be done (its message names the tile)."""
 
 
+def _failure(proc):
+    """Why a tile's process failed, in the words a user can act on: its own ERROR line, else the signal
+    that stopped it (a full disk or quota shows as SIGXFSZ or an I/O error), else its last output."""
+    errors = [l for l in proc.stderr.splitlines() if l.startswith("ERROR")]
+    if errors:
+        return "exit %d: %s" % (proc.returncode, errors[-1])
+    if proc.returncode < 0:
+        try:
+            name = signal.Signals(-proc.returncode).name
+        except ValueError:
+            name = "signal %d" % -proc.returncode
+        hint = {"SIGXFSZ": ": file size limit reached (disk full or quota on the work folder?)",
+                "SIGKILL": ": killed (out of memory?)"}.get(name, "")
+        return "killed by %s%s" % (name, hint)
+    return "exit %d: %s" % (proc.returncode, proc.stderr.strip()[-300:])
+
+
 def _die_with_parent():
     # The vectorize process dies with the worker that runs it (a killed worker leaves no orphan
     # writing into the shared folder while the task is retried elsewhere).
@@ -247,10 +264,8 @@ def run_tile(job):
         proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                               preexec_fn=_die_with_parent)
         if proc.returncode != 0:
-            last = [l for l in proc.stderr.splitlines() if l.startswith("ERROR")]
-            raise TileError("tile %s (window %s): urbanvec vectorize failed (exit %d): %s"
-                            % (tile.name, " ".join(map(str, window)), proc.returncode,
-                               last[-1] if last else proc.stderr.strip()[-300:]))
+            raise TileError("tile %s (window %s): urbanvec vectorize failed (%s)"
+                            % (tile.name, " ".join(map(str, window)), _failure(proc)))
         try:
             mask = job.get("open_regions")
             opened = open_regions(road_mask(job["landuse"], window, job.get("classes")), window, frame,
