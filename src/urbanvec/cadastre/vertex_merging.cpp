@@ -5,19 +5,9 @@
 #include <cmath>
 
 #include "urbanvec/cadastre/segment_cleaning.hpp"
+#include "urbanvec/core/segment_contact.hpp"
 
 namespace urbanvec::cadastre {
-namespace {
-
-/// Whether segments a-b and c-d cross at a point inside both.
-bool properlyCross(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
-  const double o1 = cross(b - a, c - a), o2 = cross(b - a, d - a);
-  const double o3 = cross(d - c, a - c), o4 = cross(d - c, b - c);
-  return ((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0));
-}
-
-}  // namespace
-
 void mergeSplitVertices(Linework& lw, double dist, double sliverWidth, MergeStats& stats) {
   stats = {};
   const std::size_t n = lw.vertices.size();
@@ -117,7 +107,7 @@ void mergeSplitVertices(Linework& lw, double dist, double sliverWidth, MergeStat
           const int ta = find(tg.a), tb = find(tg.b);
           if (ta == x || ta == y || tb == x || tb == y || ta == ra || ta == rb || tb == ra || tb == rb)
             continue;
-          if (properlyCross(a, b, pos[static_cast<std::size_t>(ta)], pos[static_cast<std::size_t>(tb)]))
+          if (segmentsCross(a, b, pos[static_cast<std::size_t>(ta)], pos[static_cast<std::size_t>(tb)]))
             out.push_back(t);
         }
       }
