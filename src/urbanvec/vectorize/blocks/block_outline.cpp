@@ -99,13 +99,7 @@ int absorbSlivers(std::vector<PavementPiece>& pavement, const MultiPolygon& sliv
   int absorbed = 0;
   // The envelope of each piece: its place in the order that picks a sliver's piece.
   std::vector<std::array<double, 5>> key(pavement.size());
-  for (size_t k = 0; k < pavement.size(); ++k) {
-    GEOSGeom_getXMin_r(ctx.handle(), raw[k], &key[k][0]);
-    GEOSGeom_getYMin_r(ctx.handle(), raw[k], &key[k][1]);
-    GEOSGeom_getXMax_r(ctx.handle(), raw[k], &key[k][2]);
-    GEOSGeom_getYMax_r(ctx.handle(), raw[k], &key[k][3]);
-    key[k][4] = geosArea(ctx, raw[k]);
-  }
+  for (size_t k = 0; k < pavement.size(); ++k) key[k] = envelopeKey(ctx, raw[k]);
   for (const Polygon& sliver : slivers) {
     geos::GeomPtr g = ctx.polygon(sliver);
     int best = -1;

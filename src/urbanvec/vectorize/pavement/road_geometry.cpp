@@ -327,7 +327,7 @@ geos::GeomPtr frameAnchoredUnion(const geos::Context& context, const GeosWorkers
   constexpr std::int64_t kKeyOffset = std::int64_t{1} << 40;
   struct Item {
     std::int64_t kx = 0, ky = 0;
-    double x0 = 0.0, y0 = 0.0, x1 = 0.0, y1 = 0.0, area = 0.0;
+    std::array<double, 5> envelope{};
     geos::GeomPtr geom;
   };
   std::vector<Item> items;
@@ -335,20 +335,15 @@ geos::GeomPtr frameAnchoredUnion(const geos::Context& context, const GeosWorkers
   for (geos::GeomPtr& part : parts) {
     if (!part || GEOSisEmpty_r(h, part.get())) continue;
     Item item;
-    GEOSGeom_getXMin_r(h, part.get(), &item.x0);
-    GEOSGeom_getYMin_r(h, part.get(), &item.y0);
-    GEOSGeom_getXMax_r(h, part.get(), &item.x1);
-    GEOSGeom_getYMax_r(h, part.get(), &item.y1);
-    item.area = geosArea(context, part.get());
-    item.kx = static_cast<std::int64_t>(std::floor(item.x0 / squareSize)) + kKeyOffset;
-    item.ky = static_cast<std::int64_t>(std::floor(item.y0 / squareSize)) + kKeyOffset;
+    item.envelope = envelopeKey(context, part.get());
+    item.kx = static_cast<std::int64_t>(std::floor(item.envelope[0] / squareSize)) + kKeyOffset;
+    item.ky = static_cast<std::int64_t>(std::floor(item.envelope[1] / squareSize)) + kKeyOffset;
     item.geom = std::move(part);
     items.push_back(std::move(item));
   }
   if (items.empty()) return context.collection(GEOS_GEOMETRYCOLLECTION, {});
   std::stable_sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
-    return std::tie(a.kx, a.ky, a.x0, a.y0, a.x1, a.y1, a.area) <
-           std::tie(b.kx, b.ky, b.x0, b.y0, b.x1, b.y1, b.area);
+    return std::tie(a.kx, a.ky, a.envelope) < std::tie(b.kx, b.ky, b.envelope);
   });
   // OverlayNG keeps the lines of edges that snap rounding collapsed; the union of areas is the polygons.
   auto unite = [grid](const geos::Context& c, geos::GeomPtr& into, geos::GeomPtr add) {
@@ -379,6 +374,16 @@ geos::GeomPtr frameAnchoredUnion(const geos::Context& context, const GeosWorkers
     uniteRuns();
   }
   return std::move(items.front().geom);
+}
+
+std::array<double, 5> envelopeKey(const geos::Context& context, const GEOSGeometry* g) {
+  std::array<double, 5> key{};
+  GEOSGeom_getXMin_r(context.handle(), g, &key[0]);
+  GEOSGeom_getYMin_r(context.handle(), g, &key[1]);
+  GEOSGeom_getXMax_r(context.handle(), g, &key[2]);
+  GEOSGeom_getYMax_r(context.handle(), g, &key[3]);
+  key[4] = geosArea(context, g);
+  return key;
 }
 
 double geosArea(const geos::Context& context, const GEOSGeometry* g) {

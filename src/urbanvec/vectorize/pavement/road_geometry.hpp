@@ -10,6 +10,7 @@
 
 #include <geos_c.h>
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -148,5 +149,8 @@ geos::GeomPtr frameAnchoredUnion(const geos::Context& context, const GeosWorkers
                                  std::vector<geos::GeomPtr> parts, double grid, double squareSize);
 /// Polygonal area of a geometry (0 for empty or non-polygonal).
 double geosArea(const geos::Context& context, const GEOSGeometry* g);
+/// A geometry's place in an order that does not depend on input numbering (issue 22): its envelope
+/// (x min, y min, x max, y max), then its area.
+std::array<double, 5> envelopeKey(const geos::Context& context, const GEOSGeometry* g);
 
 }  // namespace urbanvec::vectorize
