@@ -3,8 +3,9 @@
 
 #include <algorithm>
 #include <limits>
-#include <numeric>
 #include <unordered_map>
+
+#include "urbanvec/core/union_find.hpp"
 
 namespace urbanvec::cadastre {
 namespace {
@@ -27,20 +28,6 @@ double rayHit(const Vec2& o, const Vec2& d, const Vec2& a, const Vec2& b) {
   if (t < 0.0 || u < 0.0 || u > 1.0) return std::numeric_limits<double>::infinity();
   return t;
 }
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[static_cast<size_t>(x)] != x)
-      x = parent[static_cast<size_t>(x)] = parent[static_cast<size_t>(parent[static_cast<size_t>(x)])];
-    return x;
-  }
-  void join(int a, int b) {
-    a = find(a), b = find(b);
-    if (a != b) parent[static_cast<size_t>(std::max(a, b))] = std::min(a, b);
-  }
-};
 
 double segmentDistance(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
   if (rayHit(a, (b - a) / std::max(length(b - a), 1e-300), c, d) <= length(b - a)) return 0.0;
@@ -438,7 +425,7 @@ PlanarGraph structuredGraph(const Linework& lw, std::uint8_t layerMask, double g
 std::vector<int> preBlocks(const PlanarGraph& g, double threshold, int* count) {
   UnionFind uf(g.nodeCount());
   for (size_t e = 0; e < g.edgeCount(); ++e)
-    uf.join(g.edge(static_cast<int>(e)).a, g.edge(static_cast<int>(e)).b);
+    uf.unite(g.edge(static_cast<int>(e)).a, g.edge(static_cast<int>(e)).b);
   CellGrid grid(std::max(threshold, 2.0));
   for (size_t e = 0; e < g.edgeCount(); ++e) {
     double x0, y0, x1, y1;
@@ -455,7 +442,7 @@ std::vector<int> preBlocks(const PlanarGraph& g, double threshold, int* count) {
       for (size_t i = 1; i < e.line.size(); ++i)
         for (size_t j = 1; j < f.line.size(); ++j)
           if (segmentDistance(e.line[i - 1], e.line[i], f.line[j - 1], f.line[j]) < threshold) {
-            uf.join(e.a, f.a);
+            uf.unite(e.a, f.a);
             return;
           }
     });

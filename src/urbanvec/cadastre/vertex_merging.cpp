@@ -6,6 +6,7 @@
 
 #include "urbanvec/cadastre/segment_cleaning.hpp"
 #include "urbanvec/core/segment_contact.hpp"
+#include "urbanvec/core/union_find.hpp"
 
 namespace urbanvec::cadastre {
 void mergeSplitVertices(Linework& lw, double dist, double sliverWidth, MergeStats& stats) {
@@ -13,14 +14,8 @@ void mergeSplitVertices(Linework& lw, double dist, double sliverWidth, MergeStat
   const std::size_t n = lw.vertices.size();
   if (!(dist > 0.0) || n == 0) return;
   // Clusters by union-find; the root is the lowest id, and holds the cluster's position and lists.
-  std::vector<int> parent(n);
-  for (std::size_t i = 0; i < n; ++i) parent[i] = static_cast<int>(i);
-  auto find = [&](int x) {
-    while (parent[static_cast<std::size_t>(x)] != x)
-      x = parent[static_cast<std::size_t>(x)] =
-          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
-    return x;
-  };
+  UnionFind clusters(n);
+  auto find = [&](int x) { return clusters.find(x); };
   std::vector<Vec2> pos = lw.vertices;
   std::vector<double> weight(n, 0.0);
   std::vector<std::vector<int>> drawn(n);  // ids observed by a drawn segment from the cluster
@@ -166,7 +161,7 @@ void mergeSplitVertices(Linework& lw, double dist, double sliverWidth, MergeStat
       ++stats.refusedCrossing;
       continue;
     }
-    parent[static_cast<std::size_t>(y)] = x;
+    clusters.unite(x, y);  // x < y: x stays the root
     pos[static_cast<std::size_t>(x)] = m;
     weight[static_cast<std::size_t>(x)] =
         weight[static_cast<std::size_t>(x)] + weight[static_cast<std::size_t>(y)];

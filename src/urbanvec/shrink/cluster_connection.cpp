@@ -6,24 +6,11 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <numeric>
+
+#include "urbanvec/core/union_find.hpp"
 
 namespace urbanvec::shrink {
 namespace {
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int a) {
-    while (parent[static_cast<size_t>(a)] != a)
-      a = parent[static_cast<size_t>(a)] = parent[static_cast<size_t>(parent[static_cast<size_t>(a)])];
-    return a;
-  }
-  void unite(int a, int b) {
-    a = find(a), b = find(b);
-    if (a != b) parent[static_cast<size_t>(std::max(a, b))] = std::min(a, b);
-  }
-};
 
 void uniteWay(UnionFind& uf, const StreetGraph& g, const CityWay& way) {
   for (size_t i = 1; i < way.nodes.size(); ++i)
