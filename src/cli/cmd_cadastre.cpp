@@ -111,6 +111,11 @@ app::CommandSpec spec() {
                   .byDefault(app::numberText(d.mergeSplit))
                   .atLeast(0)
                   .isAdvanced());
+  o.push_back(option("-snap-joined", ValueType::Flag, "",
+                     "Segment cleaning moves every vertex within -collapse of a segment onto it, also "
+                     "corners of lot and building lines where two or more segments per layer already meet "
+                     "(default: only free ends and block-layer vertices move).")
+                  .isAdvanced());
   o.push_back(option("-no-adjust", ValueType::Flag, "",
                      "Place each vertex at the mean of its drawn copies, without the least-squares "
                      "adjustment (straight lines, right angles, ends off along their line).")
@@ -260,6 +265,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   options.straightenShare = args.real("-straighten");
   options.mergeSplit = args.real("-merge-split");
   options.adjust = !args.flag("-no-adjust");
+  options.snapJoined = args.flag("-snap-joined");
   options.straightAngle = args.real("-straight-angle");
   options.rightAngle = args.real("-right-angle");
   options.minFaceArea = args.real("-min-area");
@@ -475,6 +481,8 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   row("duplicate_segments", n(rep.duplicateSegments), "redundant segments removed");
   row("vertices_on_segments", n(rep.verticesOnSegments),
       "segments split at a vertex on them: T-vertices, partial overlaps");
+  row("corners_kept_off_segments", n(rep.cornersKeptOff),
+      "lot/building corners within -collapse of a segment left in place (their lines already meet)");
   row("corners_closed", n(rep.cornersClosed),
       "pairs of dangling ends extended or trimmed to where their lines cross");
   row("undershoots_to_segment", n(rep.undershootsToSegment),

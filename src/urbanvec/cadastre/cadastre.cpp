@@ -102,9 +102,10 @@ CadastreResult structureCadastre(const std::vector<CadLine>& lines, const std::v
   rep.revertedCollapses = cs.reverted;
   rep.zeroLengthSegments = cs.zeroLengthSegments;
   SegmentCleaningStats ss;
-  cleanSegments(lw, o.collapsingThreshold, ss, subProgress(progress, 0.15, 0.25));
+  cleanSegments(lw, o.collapsingThreshold, ss, subProgress(progress, 0.15, 0.25), o.snapJoined);
   rep.duplicateSegments = ss.duplicateSegments;
   rep.verticesOnSegments = ss.verticesOnSegments;
+  rep.cornersKeptOff = ss.cornersKeptOff;
   // Split vertices: the copies of one drawn vertex left on several vertices merge (noisy drawings only).
   if (o.mergeSplit > 0.0) {
     const double noise = copyNoise(lw);

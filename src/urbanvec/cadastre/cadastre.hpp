@@ -35,7 +35,7 @@ struct CadastreReport {
   std::size_t inputVertices = 0, outputVertices = 0;
   double collapsedShare = 0.0;
   std::size_t revertedCollapses = 0, zeroLengthSegments = 0;
-  std::size_t duplicateSegments = 0, verticesOnSegments = 0;
+  std::size_t duplicateSegments = 0, verticesOnSegments = 0, cornersKeptOff = 0;
   std::size_t cornersClosed = 0, undershootsToSegment = 0, undershootsToVertex = 0, overshootsCut = 0,
               hooksCut = 0, fringeEdgesRemoved = 0, verticesStraightened = 0;
   /// Split vertices merged (vertex_merging.hpp), and the refusals: a drawn segment between them, a

@@ -2,6 +2,7 @@
 #include "urbanvec/cadastre/segment_cleaning.hpp"
 
 #include <algorithm>
+#include <array>
 
 namespace urbanvec::cadastre {
 
@@ -24,7 +25,8 @@ std::size_t dropDuplicateSegments(std::vector<Segment>& segments) {
   return dropped;
 }
 
-void cleanSegments(Linework& lw, double threshold, SegmentCleaningStats& stats, const Progress& progress) {
+void cleanSegments(Linework& lw, double threshold, SegmentCleaningStats& stats, const Progress& progress,
+                   bool snapJoined) {
   stats = {};
   stats.duplicateSegments += dropDuplicateSegments(lw.segments);
   // Neighbours of each vertex (sorted), to leave a vertex joined to a segment's end alone (a notch).
@@ -38,6 +40,22 @@ void cleanSegments(Linework& lw, double threshold, SegmentCleaningStats& stats, 
     const auto& a = adjacent[static_cast<size_t>(v)];
     return std::binary_search(a.begin(), a.end(), w);
   };
+  // Vertices of lot and building lines where every layer's lines already meet (two or more segments
+  // per layer, none on the block layer): corners and through points whose copies found each other.
+  // They stay where they are (unless `snapJoined`): a vertex near a line it is not on is a real short
+  // edge or notch of the cadastre, and moving it onto the line folds that edge away.
+  std::vector<char> keepOff(lw.vertices.size(), 0);
+  if (!snapJoined) {
+    std::vector<std::array<int, 3>> degree(lw.vertices.size(), {0, 0, 0});
+    for (const Segment& s : lw.segments)
+      for (int k = 0; k < 3; ++k)
+        if (s.layers & (1 << k)) ++degree[static_cast<size_t>(s.a)][k], ++degree[static_cast<size_t>(s.b)][k];
+    static_assert(kBlockLayer == 1 && kLotLayer == 2 && kBuildingLayer == 4, "layer bits");
+    for (size_t v = 0; v < degree.size(); ++v) {
+      const auto& d = degree[v];
+      keepOff[v] = d[0] == 0 && d[1] != 1 && d[2] != 1 && d[1] + d[2] > 0;
+    }
+  }
   // Cells of about a typical segment (at least twice the threshold): each segment touches few cells.
   std::vector<double> lengths;
   for (const Segment& s : lw.segments)
@@ -84,6 +102,10 @@ void cleanSegments(Linework& lw, double threshold, SegmentCleaningStats& stats, 
       if (t <= 0.0 || t >= 1.0) continue;
       const double d = distance(p, a + ab * t);
       if (d < bestD) bestD = d, best = si, bestT = t;
+    }
+    if (best >= 0 && keepOff[v]) {
+      ++stats.cornersKeptOff;
+      continue;
     }
     if (best >= 0) {
       const Segment& s = lw.segments[static_cast<size_t>(best)];

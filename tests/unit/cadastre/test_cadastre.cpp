@@ -103,6 +103,38 @@ TEST(SegmentCleaning, TracedTwiceGivesOneCopyAndPartialOverlapsSplit) {
       EXPECT_EQ(s.layers, kBlockLayer | kLotLayer | kBuildingLayer);
 }
 
+TEST(SegmentCleaning, CornersWhereLinesMeetStayOffANearbyLineFreeEndsMoveOntoIt) {
+  // A lot line along y = 0; a closed building 0.4 m above it (a real 0.4 m strip, its two lower
+  // corners within the threshold of the lot line); a lot line coming down at x = 2 stopping 0.3 m short
+  // (an undershoot: a free end).
+  Linework lw;
+  lw.vertices = {{0, 0}, {10, 0}, {5, 0.4}, {8, 0.4}, {8, 5}, {5, 5}, {2, 5}, {2, 0.3}};
+  lw.segments = {{0, 1, kLotLayer},      {2, 3, kBuildingLayer}, {3, 4, kBuildingLayer},
+                 {4, 5, kBuildingLayer}, {5, 2, kBuildingLayer}, {6, 7, kLotLayer}};
+  const Linework drawn = lw;
+  SegmentCleaningStats stats;
+  cleanSegments(lw, 0.75, stats);
+  EXPECT_EQ(stats.cornersKeptOff, 2u);
+  EXPECT_EQ(lw.vertices[2], drawn.vertices[2]);
+  EXPECT_EQ(lw.vertices[3], drawn.vertices[3]);
+  EXPECT_EQ(lw.vertices[7], Vec2(2, 0));  // the free end moved onto the lot line and splits it
+  EXPECT_EQ(lw.segments.size(), 7u);
+  // -snap-joined (every vertex within reach moves): the corners fold onto the lot line too.
+  Linework all = drawn;
+  cleanSegments(all, 0.75, stats, {}, true);
+  EXPECT_EQ(stats.cornersKeptOff, 0u);
+  EXPECT_EQ(all.vertices[2], Vec2(5, 0));
+  EXPECT_EQ(all.vertices[3], Vec2(8, 0));
+  EXPECT_EQ(all.segments.size(), 8u);
+  // A vertex on the block layer still moves (a block corner whose copies split needs it).
+  Linework block = drawn;
+  for (Segment& s : block.segments)
+    if (s.layers == kBuildingLayer) s.layers = kBuildingLayer | kBlockLayer;
+  cleanSegments(block, 0.75, stats);
+  EXPECT_EQ(stats.cornersKeptOff, 0u);
+  EXPECT_EQ(block.vertices[2], Vec2(5, 0));
+}
+
 TEST(Circuits, FigureEightHasOneOutlineAndTwoInteriorCircuits) {
   Linework lw;
   lw.vertices = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {2, 1}, {2, 2}, {1, 2}};
