@@ -141,37 +141,48 @@ struct CoordinateHash {
   }
 };
 
-/// A uniform grid of ids by cell, for proximity queries (collapsing, snapping, clustering).
+/// A uniform grid of ids by cell, for proximity queries (collapsing, snapping, clustering). Each cell's
+/// ids are a list in insertion order, threaded through one pooled array (no allocation per cell).
 class CellGrid {
  public:
   explicit CellGrid(double cell) : cell_(cell) {}
   double cell() const { return cell_; }
   std::int64_t key(std::int64_t cx, std::int64_t cy) const { return cx * 73856093LL ^ cy * 19349663LL; }
   std::int64_t cx(double x) const { return static_cast<std::int64_t>(std::floor(x / cell_)); }
-  void insert(const Vec2& p, int id) { cells_[key(cx(p.x), cx(p.y))].push_back(id); }
+  void insert(const Vec2& p, int id) { push(key(cx(p.x), cx(p.y)), id); }
+  /// Removes one entry `id` from the cell of p (if there).
   void erase(const Vec2& p, int id) {
     auto it = cells_.find(key(cx(p.x), cx(p.y)));
     if (it == cells_.end()) return;
-    auto& v = it->second;
-    for (size_t i = 0; i < v.size(); ++i)
-      if (v[i] == id) {
-        v.erase(v.begin() + static_cast<std::ptrdiff_t>(i));
-        return;
-      }
+    Ends& e = it->second;
+    for (int prev = -1, n = e.head; n >= 0; prev = n, n = nodes_[static_cast<size_t>(n)].next) {
+      if (nodes_[static_cast<size_t>(n)].id != id) continue;
+      const int next = nodes_[static_cast<size_t>(n)].next;
+      (prev < 0 ? e.head : nodes_[static_cast<size_t>(prev)].next) = next;
+      if (e.tail == n) e.tail = prev;
+      return;
+    }
   }
   /// Inserts `id` in every cell its box touches.
   void insertBox(double x0, double y0, double x1, double y1, int id) {
     for (std::int64_t i = cx(x0); i <= cx(x1); ++i)
-      for (std::int64_t j = cx(y0); j <= cx(y1); ++j) cells_[key(i, j)].push_back(id);
+      for (std::int64_t j = cx(y0); j <= cx(y1); ++j) push(key(i, j), id);
   }
   /// Calls f(ids) for every non-empty cell, in an order fixed by the cells' contents.
   template <class F>
   void forEachCell(F&& f) const {
-    std::vector<std::int64_t> keys;
-    keys.reserve(cells_.size());
-    for (const auto& kv : cells_) keys.push_back(kv.first);
-    std::sort(keys.begin(), keys.end());
-    for (std::int64_t k : keys) f(cells_.at(k));
+    std::vector<std::pair<std::int64_t, int>> heads;
+    heads.reserve(cells_.size());
+    for (const auto& kv : cells_)
+      if (kv.second.head >= 0) heads.emplace_back(kv.first, kv.second.head);
+    std::sort(heads.begin(), heads.end());
+    std::vector<int> ids;
+    for (const auto& [k, head] : heads) {
+      ids.clear();
+      for (int n = head; n >= 0; n = nodes_[static_cast<size_t>(n)].next)
+        ids.push_back(nodes_[static_cast<size_t>(n)].id);
+      f(static_cast<const std::vector<int>&>(ids));
+    }
   }
   /// Calls f(id) for the ids of every cell the box touches (an id may come more than once).
   template <class F>
@@ -180,13 +191,30 @@ class CellGrid {
       for (std::int64_t j = cx(y0); j <= cx(y1); ++j) {
         auto it = cells_.find(key(i, j));
         if (it != cells_.end())
-          for (int id : it->second) f(id);
+          for (int n = it->second.head; n >= 0; n = nodes_[static_cast<size_t>(n)].next)
+            f(nodes_[static_cast<size_t>(n)].id);
       }
   }
 
  private:
+  struct Node {
+    int id;
+    int next;
+  };
+  struct Ends {
+    int head = -1;
+    int tail = -1;
+  };
+  void push(std::int64_t k, int id) {
+    Ends& e = cells_[k];
+    const int n = static_cast<int>(nodes_.size());
+    nodes_.push_back({id, -1});
+    (e.tail < 0 ? e.head : nodes_[static_cast<size_t>(e.tail)].next) = n;
+    e.tail = n;
+  }
   double cell_;
-  std::unordered_map<std::int64_t, std::vector<int>> cells_;
+  std::unordered_map<std::int64_t, Ends> cells_;
+  std::vector<Node> nodes_;
 };
 
 }  // namespace urbanvec::cadastre
