@@ -103,6 +103,33 @@ TEST(SegmentCleaning, TracedTwiceGivesOneCopyAndPartialOverlapsSplit) {
       EXPECT_EQ(s.layers, kBlockLayer | kLotLayer | kBuildingLayer);
 }
 
+TEST(CellGrid, QueriesGiveEachCellsIdsInInsertionOrderAndEraseUnlinksOneEntry) {
+  CellGrid grid(1.0);
+  auto ids = [&](double x0, double y0, double x1, double y1) {
+    std::vector<int> out;
+    grid.query(x0, y0, x1, y1, [&](int id) { out.push_back(id); });
+    return out;
+  };
+  for (int id : {5, 3, 9, 3}) grid.insert({0.5, 0.5}, id);
+  grid.insertBox(0.2, 0.2, 1.5, 0.4, 7);  // cells (0,0) and (1,0)
+  EXPECT_EQ(ids(0.1, 0.1, 0.2, 0.2), (std::vector<int>{5, 3, 9, 3, 7}));
+  EXPECT_EQ(ids(1.1, 0.1, 1.2, 0.2), (std::vector<int>{7}));
+  grid.erase({0.5, 0.5}, 7);   // the tail
+  grid.erase({0.5, 0.5}, 3);   // the first 3 only
+  grid.erase({0.5, 0.5}, 42);  // absent: nothing
+  grid.erase({9.5, 9.5}, 5);   // empty cell: nothing
+  EXPECT_EQ(ids(0.1, 0.1, 0.2, 0.2), (std::vector<int>{5, 9, 3}));
+  grid.insert({0.5, 0.5}, 8);  // appended after the new tail
+  grid.erase({0.5, 0.5}, 5);   // the head
+  EXPECT_EQ(ids(0.1, 0.1, 0.2, 0.2), (std::vector<int>{9, 3, 8}));
+  std::vector<std::vector<int>> cells;
+  grid.forEachCell([&](const std::vector<int>& c) { cells.push_back(c); });
+  ASSERT_EQ(cells.size(), 2u);
+  std::sort(cells.begin(), cells.end());
+  EXPECT_EQ(cells[0], (std::vector<int>{7}));
+  EXPECT_EQ(cells[1], (std::vector<int>{9, 3, 8}));
+}
+
 TEST(SegmentCleaning, CornersWhereLinesMeetStayOffANearbyLineFreeEndsMoveOntoIt) {
   // A lot line along y = 0; a closed building 0.4 m above it (a real 0.4 m strip, its two lower
   // corners within the threshold of the lot line); a lot line coming down at x = 2 stopping 0.3 m short
