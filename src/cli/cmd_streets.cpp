@@ -167,23 +167,33 @@ app::CommandSpec spec() {
                   .withUnit("m")
                   .atLeast(1e-3)
                   .isAdvanced());
-  o.push_back(
-      option("-delete-share", ValueType::Real, "<share>",
-             "Graph noise (§13.6): share of minor segments between crossings deleted (Halton-spread).")
-          .byDefault(app::numberText(d.noise.fullShare))
-          .atLeast(0)
-          .atMost(1));
-  o.push_back(option("-cut-share", ValueType::Real, "<share>",
-                     "Graph noise: share of minor segments cut back to a dead-end stub.")
-                  .byDefault(app::numberText(d.noise.partialShare))
+  // The shares of the graph noise and of stopping short: a value in [0, 1].
+  auto share = [&](const char* name, const std::string& help, double byDefault) {
+    o.push_back(option(name, ValueType::Real, "<share>", help)
+                    .byDefault(app::numberText(byDefault))
+                    .atLeast(0)
+                    .atMost(1));
+  };
+  share("-delete-share",
+        "Graph noise (§13.6): share of minor segments between crossings deleted (Halton-spread).",
+        d.noise.fullShare);
+  share("-cut-share", "Graph noise: share of minor segments cut back to a dead-end stub.",
+        d.noise.partialShare);
+  share("-bend-share",
+        "Graph noise: share of minor segments deleted at a T-junction whose two other streets then meet at a "
+        "turn of at least 45 degrees, so the street turns the corner there.",
+        d.noise.bendShare);
+  share("-stop-short-share",
+        "Chance that an end of a minor road joining streets at both ends (T-junctions) stops d_test short "
+        "instead, leaving a dead end (a cul-de-sac); one end per road at most, drawn from -seed; 0 = off.",
+        d.trace.stopShortShare);
+  o.push_back(option("-bow", ValueType::Real, "<ratio>",
+                     "Curved streets: each traced street between two nodes bows sideways by a half sine of "
+                     "up to this share of its chord (at most a quarter of the minor d_sep; drawn per street "
+                     "from -seed; never onto another street or the boundary); 0 = straight.")
+                  .byDefault(app::numberText(d.bow.ratio))
                   .atLeast(0)
-                  .atMost(1));
-  o.push_back(option("-bend-share", ValueType::Real, "<share>",
-                     "Graph noise: share of minor segments deleted at a T-junction whose two other streets "
-                     "then meet at a turn of at least 45 degrees, so the street turns the corner there.")
-                  .byDefault(app::numberText(d.noise.bendShare))
-                  .atLeast(0)
-                  .atMost(1));
+                  .atMost(0.5));
   o.push_back(app::seedOption());
   o.push_back(option("-no-minor", ValueType::Flag, "", "Trace the major roads only."));
   o.push_back(
@@ -336,6 +346,10 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   options.trace.minorDsep =
       args.given("-dsep-minor") ? args.real("-dsep-minor") : options.minorDsepRatio * options.trace.majorDsep;
   options.field.seed = static_cast<std::uint64_t>(args.integer("-seed"));
+  options.trace.seed = options.field.seed;
+  options.bow.seed = options.field.seed;
+  options.bow.ratio = args.real("-bow");
+  options.trace.stopShortShare = args.real("-stop-short-share");
   options.noise.fullShare = args.real("-delete-share");
   options.noise.partialShare = args.real("-cut-share");
   options.noise.bendShare = args.real("-bend-share");

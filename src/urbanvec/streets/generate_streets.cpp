@@ -195,6 +195,11 @@ StreetNetwork generateStreets(const StreetsInput& input, const StreetsOptions& o
     for (int e = 0; e < static_cast<int>(graph.edgeCount()); ++e)
       pieces.push_back({graph.edge(e).line, edgeLevel[static_cast<std::size_t>(e)], 0});
   }
+  {
+    BowOptions bow = options.bow;
+    bow.maxOffset = options.bowMaxOffsetRatio * t.minorDsep;
+    bowStreets(pieces, bow);
+  }
   // The street graph: its pieces share their end points exactly.
   PlanarGraph streets;
   std::vector<StreetLevel> streetLevel;

@@ -34,6 +34,11 @@ struct StreetsOptions {
   FieldOptions field;
   TraceOptions trace;
   GraphNoiseOptions noise;
+  /// Curved streets; its maxOffset is set from the minor d_sep (bowMaxOffsetRatio).
+  BowOptions bow;
+  /// Largest bow = ratio × minor d_sep: a quarter, so two facing bows never close the gap d_test
+  /// (half a d_sep) between parallel streets.
+  double bowMaxOffsetRatio = 0.25;
   /// Field cell = ratio × minor d_sep when field.cellSize is 0 (spec §16: cell ≈ d_sep_minor / 4).
   double fieldCellRatio = 0.25;
   /// Minor d_sep = ratio × major d_sep when the caller gives none. The spec's major / 4 (§16, "pure

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "urbanvec/core/random.hpp"
+#include "urbanvec/core/segment_contact.hpp"
 #include "urbanvec/core/uniform_grid.hpp"
 
 namespace urbanvec::streets {
@@ -177,6 +179,88 @@ std::vector<Street> applyGraphNoise(const PlanarGraph& graph, const std::vector<
     out.push_back({std::move(line), edgeLevel[k], 0});
   }
   return out;
+}
+
+void bowStreets(std::vector<Street>& pieces, const BowOptions& options) {
+  if (!(options.ratio > 0.0) || !(options.maxOffset > 0.0) || pieces.empty()) return;
+  Vec2 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()}, hi = lo * -1.0;
+  for (const Street& s : pieces)
+    for (const Vec2& v : s.line)
+      lo = {std::min(lo.x, v.x), std::min(lo.y, v.y)}, hi = {std::max(hi.x, v.x), std::max(hi.y, v.y)};
+  // Segments of the pieces' current geometry; a bowed piece's old segments are skipped by generation.
+  struct Seg {
+    Vec2 a, b;
+    int piece, generation;
+  };
+  std::vector<Seg> segs;
+  std::vector<int> generation(pieces.size(), 0);
+  UniformGrid<int> grid(
+      lo, hi, std::max({4.0 * options.maxOffset, (hi.x - lo.x) / 2048.0, (hi.y - lo.y) / 2048.0, 1e-6}));
+  auto add = [&](int piece) {
+    const LineString& l = pieces[static_cast<std::size_t>(piece)].line;
+    for (std::size_t i = 0; i + 1 < l.size(); ++i) {
+      grid.insert(l[i], l[i + 1], static_cast<int>(segs.size()));
+      segs.push_back({l[i], l[i + 1], piece, generation[static_cast<std::size_t>(piece)]});
+    }
+  };
+  for (int i = 0; i < static_cast<int>(pieces.size()); ++i) add(i);
+  // True when the bowed line meets another piece anywhere but at its own two ends.
+  auto blocked = [&](int piece, const LineString& l) {
+    const Vec2 first = l.front(), last = l.back();
+    bool hit = false;
+    for (std::size_t i = 0; !hit && i + 1 < l.size(); ++i) {
+      const Vec2 p = l[i], q = l[i + 1];
+      grid.forBox(p, q, [&](const std::vector<int>& bucket) {
+        for (std::size_t k = 0; !hit && k < bucket.size(); ++k) {
+          const Seg& s = segs[static_cast<std::size_t>(bucket[k])];
+          if (s.piece == piece || s.generation != generation[static_cast<std::size_t>(s.piece)]) continue;
+          const SegmentContact c = segmentContact(p, q, s.a, s.b);
+          if (c == SegmentContact::None) continue;
+          // A segment from an end node may touch the pieces meeting there, at that node only.
+          const bool atFirst = i == 0 && (s.a == first || s.b == first) &&
+                               distanceToSegment(s.a == first ? s.b : s.a, p, q) > 0.0 &&
+                               distanceToSegment(q, s.a, s.b) > 0.0;
+          const bool atLast = i + 2 == l.size() && (s.a == last || s.b == last) &&
+                              distanceToSegment(s.a == last ? s.b : s.a, p, q) > 0.0 &&
+                              distanceToSegment(p, s.a, s.b) > 0.0;
+          hit = c == SegmentContact::Crossing || !(atFirst || atLast);
+        }
+      });
+    }
+    return hit;
+  };
+  for (int i = 0; i < static_cast<int>(pieces.size()); ++i) {
+    Street& s = pieces[static_cast<std::size_t>(i)];
+    if ((s.level != StreetLevel::Major && s.level != StreetLevel::Minor) || s.line.size() < 2) continue;
+    const Vec2 a = s.line.front(), b = s.line.back();
+    const double chord = distance(a, b);
+    if (!(chord > 0.0)) continue;
+    const double u =
+        static_cast<double>(deriveSeed(options.seed ^ 0xb0e5ULL, static_cast<std::uint64_t>(i)) >> 11) *
+        0x1p-53;
+    double offset =
+        std::clamp((2.0 * u - 1.0) * options.ratio * chord, -options.maxOffset, options.maxOffset);
+    // The piece densified to at least 8 pieces (a traced street has a vertex every integration step, an
+    // eighth of the minor d_sep, already), each vertex moved along the chord's normal by offset × sin(π s /
+    // length), s its distance along the piece.
+    const LineString dense = densified(s.line, chord / 8.0);
+    const double total = length(dense);
+    const Vec2 normal{-(b.y - a.y) / chord, (b.x - a.x) / chord};
+    for (int attempt = 0; attempt < 2 && std::abs(offset) > 0.0; ++attempt, offset *= 0.5) {
+      LineString bowed{dense.front()};
+      double at = 0.0;
+      for (std::size_t k = 1; k < dense.size(); ++k) {
+        at += distance(dense[k - 1], dense[k]);
+        bowed.push_back(k + 1 == dense.size() ? dense.back()
+                                              : dense[k] + normal * (offset * std::sin(M_PI * at / total)));
+      }
+      if (blocked(i, bowed)) continue;
+      s.line = std::move(bowed);
+      ++generation[static_cast<std::size_t>(i)];
+      add(i);
+      break;
+    }
+  }
 }
 
 }  // namespace urbanvec::streets
