@@ -16,7 +16,6 @@ AREAS="monaco bubenec monaco_west monaco_east"
 for c in $AREAS; do
   d="$OUT/$c"
   [ -f "$d/run.txt" ] || { echo "ERROR: $d/run.txt missing: run bench/streets/compare.sh $OUT first" >&2; exit 1; }
-  read -r _ _ _ dmaj _ <"$d/run.txt"
   water=()
   [ -f "$d/water.gpkg" ] && water=(-water "$d/water.gpkg")
   mkdir -p "$d/seeds"
@@ -25,7 +24,7 @@ for c in $AREAS; do
     [ "$mode" = kept ] && keep=(-keep-roads)
     for s in 1 2 3 4 5 6 7 8; do
       "$URBANVEC" streets -q -overwrite -boundary "$d/boundary.gpkg" "${water[@]}" -roads "$d/main.gpkg" "${keep[@]}" \
-        -dsep-major "$dmaj" -seed "$s" "$@" "$d/seeds/$mode-$s.gpkg"
+        -seed "$s" "$@" "$d/seeds/$mode-$s.gpkg"
       "$URBANVEC" street-metrics -q -overwrite -layer streets -area "$d/interior.gpkg" -json "$d/seeds/$mode-$s.json" \
         "$d/seeds/$mode-$s.gpkg"
     done

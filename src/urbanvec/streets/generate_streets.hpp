@@ -88,6 +88,13 @@ struct StreetNetwork {
   std::size_t tracedLines = 0;
 };
 
+/// The spacing of the given roads over the land (the boundary minus the water): a grid of spacing s
+/// has 2/s metres of road per m², so s = 2 A / L with A the land's area and L the roads' length on it
+/// (m). The default major d_sep when roads shape the field, so that the network takes their scale;
+/// 0 when no road lies on the land.
+double roadSpacing(const std::vector<LineString>& roads, const MultiPolygon& boundary,
+                   const MultiPolygon& water);
+
 /// Runs the pipeline. Throws InvalidInput for an empty design, design points outside the boundary,
 /// an empty boundary; InvalidOption for bad d_sep / d_test values. Water covering all land gives an
 /// empty network (the caller warns).

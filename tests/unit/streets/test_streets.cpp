@@ -575,6 +575,21 @@ TEST(Streets, StopShortLeavesDeadEndsWhereStreetsWouldJoin) {
   EXPECT_EQ(pieces(run(1.0)), 1);
 }
 
+TEST(Streets, RoadSpacingIsThatOfAGridWithAsMuchRoad) {
+  // Roads every 200 m across a 1000 m square (x, y = 100, 300, ..., 900): 2 A / L = 200 m; their parts
+  // outside the boundary do not count. With water over 620 <= x <= 980 only the land counts: 0.64 km²
+  // and 3 verticals of 1000 m plus 5 horizontals of 620 + 20 m, 2 A / L = 1.28e6 / 6200.
+  std::vector<LineString> roads;
+  for (int i = 0; i < 5; ++i) {
+    roads.push_back({{100.0 + 200 * i, -300}, {100.0 + 200 * i, 1300}});
+    roads.push_back({{-300, 100.0 + 200 * i}, {1300, 100.0 + 200 * i}});
+  }
+  EXPECT_NEAR(roadSpacing(roads, square(0, 0, 1000), {}), 200.0, 1e-9);
+  const MultiPolygon water{{{{620, -100}, {980, -100}, {980, 1100}, {620, 1100}, {620, -100}}, {}}};
+  EXPECT_NEAR(roadSpacing(roads, square(0, 0, 1000), water), 1.28e6 / 6200.0, 1e-9);
+  EXPECT_EQ(roadSpacing({{{2000, 0}, {3000, 0}}}, square(0, 0, 1000), {}), 0.0);
+}
+
 TEST(Streets, DensityAndParksWidenTheSpacing) {
   // A density ramp, 0 on the westmost 500 m and rising to 1 in the east: blocks are larger where
   // density is low (spec §19.2 check 22); then a park over the north half.
