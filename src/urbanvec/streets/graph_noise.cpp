@@ -152,11 +152,53 @@ std::vector<Street> applyGraphNoise(const PlanarGraph& graph, const std::vector<
     }
     return rest.size() == 2 && dot(rest[0], rest[1]) > turnCos;
   };
+  // Whether edge g is a street at node n (a cut-back edge only at its stub's end).
+  auto counts = [&](int g, int n) {
+    const auto k = static_cast<std::size_t>(g);
+    if (fate[k] == Delete || edgeLevel[k] == StreetLevel::Outline) return false;
+    return fate[k] != Cut || (cutFromB[k] ? graph.edge(g).b : graph.edge(g).a) == n;
+  };
+  // Where a street leaving node `from` along edge f ends: the first node of street degree other than
+  // 2 (`from` itself round a ring); a cut-back edge ends at its stub's own dead end (-2 - g).
+  auto streetEnd = [&](int f, int from) {
+    int at = from;
+    for (std::size_t steps = 0; steps <= graph.edgeCount(); ++steps) {
+      if (fate[static_cast<std::size_t>(f)] == Cut) return -2 - f;
+      const int next = graph.edge(f).a == at ? graph.edge(f).b : graph.edge(f).a;
+      if (next == from || degree[static_cast<std::size_t>(next)] != 2) return next;
+      int other = -1;
+      for (int g : graph.node(next).edges)
+        if (g != f && counts(g, next)) other = g;
+      if (other < 0) return next;
+      at = next, f = other;
+    }
+    return from;
+  };
+  // Deleting e must not merge streets into a loop: a street from a node back to the same node (a
+  // ring left on one spur, or a ring with no junction at all), whose chord is 0.
+  auto makesLoop = [&](int e) {
+    const PlanarGraph::Edge& ed = graph.edge(e);
+    const auto k = static_cast<std::size_t>(e);
+    fate[k] = Delete;
+    --degree[static_cast<std::size_t>(ed.a)], --degree[static_cast<std::size_t>(ed.b)];
+    bool loop = false;
+    for (int m : {ed.a, ed.b}) {
+      if (degree[static_cast<std::size_t>(m)] != 2) continue;
+      std::vector<int> ends;
+      for (int g : graph.node(m).edges)
+        if (counts(g, m)) ends.push_back(streetEnd(g, m));
+      loop = loop || (ends.size() == 2 && ends[0] == ends[1]);
+    }
+    fate[k] = Keep;
+    ++degree[static_cast<std::size_t>(ed.a)], ++degree[static_cast<std::size_t>(ed.b)];
+    return loop;
+  };
   auto bendable = [&](int e) {
     const PlanarGraph::Edge& ed = graph.edge(e);
     if (fate[static_cast<std::size_t>(e)] != Keep || ed.a == ed.b) return false;
-    return (turnsAt(e, ed.a) && degree[static_cast<std::size_t>(ed.b)] >= 3) ||
-           (turnsAt(e, ed.b) && degree[static_cast<std::size_t>(ed.a)] >= 3);
+    return ((turnsAt(e, ed.a) && degree[static_cast<std::size_t>(ed.b)] >= 3) ||
+            (turnsAt(e, ed.b) && degree[static_cast<std::size_t>(ed.a)] >= 3)) &&
+           !makesLoop(e);
   };
   const int bends = static_cast<int>(std::lround(options.bendShare * minor.size()));
   for (int tries = 0, done = 0; tries < maxTries && done < bends; ++tries, ++index) {

@@ -590,6 +590,40 @@ TEST(Streets, RoadSpacingIsThatOfAGridWithAsMuchRoad) {
   EXPECT_EQ(roadSpacing({{{2000, 0}, {3000, 0}}}, square(0, 0, 1000), {}), 0.0);
 }
 
+TEST(GraphNoise, BendsNeverLeaveARingOnOneSpur) {
+  // A square ring (major) joined at (0, 0) by a spur from the west and at (100, 100) by a minor street
+  // to a crossing street at x = 200. Deleting the minor street would turn the corner at (100, 100),
+  // but it would leave the ring on its one spur: a street from (0, 0) round to (0, 0), chord 0. So no
+  // bend is taken, and no street of the result is a loop.
+  const std::vector<LineString> lines{{{0, 0}, {100, 0}, {100, 100}, {0, 100}, {0, 0}},
+                                      {{-100, 0}, {0, 0}},
+                                      {{100, 100}, {200, 100}},
+                                      {{200, 0}, {200, 200}}};
+  const PlanarGraph g = PlanarGraph::fromLines(lines);
+  std::vector<StreetLevel> levels(g.edgeCount(), StreetLevel::Major);
+  int minorEdges = 0;
+  for (int e = 0; e < static_cast<int>(g.edgeCount()); ++e) {
+    const LineString& l = g.edge(e).line;
+    if ((l.front() == Vec2{100, 100} && l.back() == Vec2{200, 100}) ||
+        (l.back() == Vec2{100, 100} && l.front() == Vec2{200, 100}))
+      levels[static_cast<std::size_t>(e)] = StreetLevel::Minor, ++minorEdges;
+  }
+  ASSERT_EQ(minorEdges, 1);
+  GraphNoiseOptions o;
+  o.fullShare = 0.0;
+  o.partialShare = 0.0;
+  o.bendShare = 1.0;
+  const std::vector<Street> kept = applyGraphNoise(g, levels, o);
+  EXPECT_EQ(kept.size(), g.edgeCount());
+  std::vector<LineString> l;
+  for (const Street& s : kept) l.push_back(s.line);
+  const PlanarGraph k = PlanarGraph::fromLines(l);
+  for (const std::vector<int>& chain : k.chains()) {
+    const std::vector<int> ends = k.chainNodes(chain);
+    EXPECT_NE(ends.front(), ends.back());
+  }
+}
+
 TEST(Streets, DensityAndParksWidenTheSpacing) {
   // A density ramp, 0 on the westmost 500 m and rising to 1 in the east: blocks are larger where
   // density is low (spec §19.2 check 22); then a park over the north half.
