@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The realism comparison of bench/streets/compare.sh over seeds 1-8: for each area and mode (generated,
 # main roads kept), the mean number of the 7 figures that match the real network and of the 6 of
-# Boeing's plausibility ranges that hold, per figure how many seeds match, and the median values.
+# Boeing's plausibility ranges that hold, per figure how many seeds match, and the median values;
+# then per figure on how many seeds it lies inside Boeing's range.
 # Run compare.sh first (it prepares the areas in OUTDIR). Extra arguments go to `urbanvec streets`,
 # e.g. `-bend-share 0 -edge-seed-ratio 0` to measure without the corner and edge-seed rules.
 # usage: bench/streets/seeds.sh [OUTDIR] [streets options...]   (default OUTDIR /tmp/streets_compare)
@@ -15,7 +16,6 @@ AREAS="monaco bubenec monaco_west monaco_east"
 for c in $AREAS; do
   d="$OUT/$c"
   [ -f "$d/run.txt" ] || { echo "ERROR: $d/run.txt missing: run bench/streets/compare.sh $OUT first" >&2; exit 1; }
-  read -r _ _ _ dmaj _ <"$d/run.txt"
   water=()
   [ -f "$d/water.gpkg" ] && water=(-water "$d/water.gpkg")
   mkdir -p "$d/seeds"
@@ -24,7 +24,7 @@ for c in $AREAS; do
     [ "$mode" = kept ] && keep=(-keep-roads)
     for s in 1 2 3 4 5 6 7 8; do
       "$URBANVEC" streets -q -overwrite -boundary "$d/boundary.gpkg" "${water[@]}" -roads "$d/main.gpkg" "${keep[@]}" \
-        -dsep-major "$dmaj" -seed "$s" "$@" "$d/seeds/$mode-$s.gpkg"
+        -seed "$s" "$@" "$d/seeds/$mode-$s.gpkg"
       "$URBANVEC" street-metrics -q -overwrite -layer streets -area "$d/interior.gpkg" -json "$d/seeds/$mode-$s.json" \
         "$d/seeds/$mode-$s.gpkg"
     done
@@ -51,4 +51,14 @@ for c in areas:
         plaus = st.mean(sum(lo <= g[k] <= hi for k, (lo, hi) in plausible.items()) for g in runs)
         cells = [f"{sum(ok(g, k) for g in runs)}; {st.median(g[k] for g in runs):.3f}" for k in tol]
         print(f"| {c} | {mode} | {matches:.2f} | {plaus:.2f} | " + " | ".join(cells) + " |")
+# Per figure: on how many seeds it lies inside Boeing's range (the plausibility the generated mode is
+# judged by), and its median.
+print("\n| area | mode | " + " | ".join(f"{k} in {lo}-{hi} (seeds; median)" for k, (lo, hi) in plausible.items()) + " |")
+print("|---" * (2 + len(plausible)) + "|")
+for c in areas:
+    for mode in ("generated", "kept"):
+        runs = [json.load(open(f"{out}/{c}/seeds/{mode}-{s}.json")) for s in range(1, 9)]
+        cells = [f"{sum(lo <= g[k] <= hi for g in runs)}; {st.median(g[k] for g in runs):.3f}"
+                 for k, (lo, hi) in plausible.items()]
+        print(f"| {c} | {mode} | " + " | ".join(cells) + " |")
 PY

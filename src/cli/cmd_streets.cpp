@@ -93,8 +93,11 @@ app::CommandSpec spec() {
              "Also write the tensor field as a GeoTIFF: band 1 major direction (degrees ccw from east), "
              "band 2 magnitude / median magnitude.")
           .withRole(Role::OutputRaster));
-  o.push_back(option("-dsep-major", ValueType::Real, "<metres>", "Separation of major roads.")
-                  .byDefault(app::numberText(d.trace.majorDsep))
+  o.push_back(option("-dsep-major", ValueType::Real, "<metres>",
+                     "Separation of major roads; default the spacing of the -roads (2 x land area / their "
+                     "length on the land: a grid with as much road) up to " +
+                         app::numberText(d.trace.majorDsep) + ", without -roads " +
+                         app::numberText(d.trace.majorDsep) + ".")
                   .withUnit("m")
                   .atLeast(1e-3));
   o.push_back(
@@ -167,23 +170,33 @@ app::CommandSpec spec() {
                   .withUnit("m")
                   .atLeast(1e-3)
                   .isAdvanced());
-  o.push_back(
-      option("-delete-share", ValueType::Real, "<share>",
-             "Graph noise (§13.6): share of minor segments between crossings deleted (Halton-spread).")
-          .byDefault(app::numberText(d.noise.fullShare))
-          .atLeast(0)
-          .atMost(1));
-  o.push_back(option("-cut-share", ValueType::Real, "<share>",
-                     "Graph noise: share of minor segments cut back to a dead-end stub.")
-                  .byDefault(app::numberText(d.noise.partialShare))
+  // The shares of the graph noise and of stopping short: a value in [0, 1].
+  auto share = [&](const char* name, const std::string& help, double byDefault) {
+    o.push_back(option(name, ValueType::Real, "<share>", help)
+                    .byDefault(app::numberText(byDefault))
+                    .atLeast(0)
+                    .atMost(1));
+  };
+  share("-delete-share",
+        "Graph noise (§13.6): share of minor segments between crossings deleted (Halton-spread).",
+        d.noise.fullShare);
+  share("-cut-share", "Graph noise: share of minor segments cut back to a dead-end stub.",
+        d.noise.partialShare);
+  share("-bend-share",
+        "Graph noise: share of minor segments deleted at a T-junction whose two other streets then meet at a "
+        "turn of at least 45 degrees, so the street turns the corner there.",
+        d.noise.bendShare);
+  share("-stop-short-share",
+        "Chance that an end of a minor road joining streets at both ends (T-junctions) stops d_test short "
+        "instead, leaving a dead end (a cul-de-sac); one end per road at most, drawn from -seed; 0 = off.",
+        d.trace.stopShortShare);
+  o.push_back(option("-bow", ValueType::Real, "<ratio>",
+                     "Curved streets: each traced street between two nodes bows sideways by a half sine of "
+                     "up to this share of its chord (at most a quarter of the minor d_sep; drawn per street "
+                     "from -seed; never onto another street or the boundary); 0 = straight.")
+                  .byDefault(app::numberText(d.bow.ratio))
                   .atLeast(0)
-                  .atMost(1));
-  o.push_back(option("-bend-share", ValueType::Real, "<share>",
-                     "Graph noise: share of minor segments deleted at a T-junction whose two other streets "
-                     "then meet at a turn of at least 45 degrees, so the street turns the corner there.")
-                  .byDefault(app::numberText(d.noise.bendShare))
-                  .atLeast(0)
-                  .atMost(1));
+                  .atMost(0.5));
   o.push_back(app::seedOption());
   o.push_back(option("-no-minor", ValueType::Flag, "", "Trace the major roads only."));
   o.push_back(
@@ -332,10 +345,11 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   const std::string outputPath = args.positionals()[0];
   if (!args.given("-boundary")) throw invalidOption("-boundary is required: the polygon the streets grow in");
   streets::StreetsOptions options;
-  options.trace.majorDsep = args.real("-dsep-major");
-  options.trace.minorDsep =
-      args.given("-dsep-minor") ? args.real("-dsep-minor") : options.minorDsepRatio * options.trace.majorDsep;
   options.field.seed = static_cast<std::uint64_t>(args.integer("-seed"));
+  options.trace.seed = options.field.seed;
+  options.bow.seed = options.field.seed;
+  options.bow.ratio = args.real("-bow");
+  options.trace.stopShortShare = args.real("-stop-short-share");
   options.noise.fullShare = args.real("-delete-share");
   options.noise.partialShare = args.real("-cut-share");
   options.noise.bendShare = args.real("-bend-share");
@@ -346,9 +360,6 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   if (!(options.trace.dtestRatio > 0.0) || options.trace.dtestRatio > 1.0)
     throw invalidOption("-dtest-ratio " + args.str("-dtest-ratio") +
                         ": d_test must be > 0 and at most d_sep (ratio in (0, 1])");
-  if (options.trace.minorDsep > options.trace.majorDsep)
-    throw invalidOption("-dsep-minor " + args.str("-dsep-minor") + " exceeds -dsep-major " +
-                        args.str("-dsep-major"));
   options.trace.lookaheadRatio = args.real("-lookahead-ratio");
   options.trace.minLengthRatio = args.real("-min-length-ratio");
   options.trace.edgeSeedRatio = args.real("-edge-seed-ratio");
@@ -416,8 +427,10 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
     if (input.design.empty())
       throw invalidInput("-design '" + args.str("-design") + "' holds no design element");
   }
+  std::vector<LineString> roads;
   if (args.given("-roads")) {
-    input.fieldLines = app::linesOf(optionalLayer("-roads", "-roads-layer", "-where").layer);
+    roads = app::linesOf(optionalLayer("-roads", "-roads-layer", "-where").layer);
+    input.fieldLines = roads;
     if (input.fieldLines.empty())
       throw invalidInput("-roads '" + args.str("-roads") + "' holds no line" +
                          (args.given("-where") ? " where " + args.str("-where") : ""));
@@ -452,6 +465,20 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
     input.density = readRaster(args.str("-density"), "-density", crs, spec, nullptr, nullptr, nullptr);
     input.densitySpec = spec;
   }
+  // d_sep: given, or the spacing of the roads that shape the field (their scale, not a fixed one).
+  if (args.given("-dsep-major")) {
+    options.trace.majorDsep = args.real("-dsep-major");
+  } else if (!roads.empty()) {
+    // At most the fixed default: a few lines given to shape the field are not a network, and their
+    // spacing (2 A / L) would leave a city of them almost without streets.
+    const double spacing = streets::roadSpacing(roads, input.boundary, input.water);
+    if (spacing > 0.0) options.trace.majorDsep = std::min(spacing, options.trace.majorDsep);
+  }
+  options.trace.minorDsep =
+      args.given("-dsep-minor") ? args.real("-dsep-minor") : options.minorDsepRatio * options.trace.majorDsep;
+  if (options.trace.minorDsep > options.trace.majorDsep)
+    throw invalidOption("-dsep-minor " + args.str("-dsep-minor") + " exceeds -dsep-major " +
+                        app::numberText(options.trace.majorDsep));
 
   const streets::StreetNetwork net = streets::generateStreets(input, options, ctx.progress);
   if (net.streets.empty())

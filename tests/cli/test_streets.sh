@@ -87,7 +87,8 @@ for path, data in ((sys.argv[1], 100.0 - 0.05 * np.hypot(x * 20 - 1100.0, y * 20
     ds.SetGeoTransform((449900, 20, 0, 5552100, 0, -20)); ds.SetProjection(srs.ExportToWkt())
     ds.GetRasterBand(1).WriteArray(data.astype("float32")); ds = None
 PY
-run_cmd streets -q -boundary "$WORK/boundary.gpkg" -dem "$WORK/hill.tif" -dsep-major 250 -no-minor "$WORK/hill.gpkg"
+# (-bow 0: the check is on the field's directions, which bows leave by up to 32 degrees on purpose.)
+run_cmd streets -q -boundary "$WORK/boundary.gpkg" -dem "$WORK/hill.tif" -dsep-major 250 -no-minor -bow 0 "$WORK/hill.gpkg"
 expect_status 0
 # Streets follow the contours (rings) or climb the gradient (rays): measured per segment, the angle
 # to the summit's radial direction is near 90 or near 0 degrees for most of the length.
@@ -131,6 +132,24 @@ traced=$(ogrinfo -ro -q -dialect sqlite -sql "SELECT COUNT(*) AS n FROM streets 
 [ "${traced:-0}" -gt 100 ] || fail "only ${traced:-0} traced streets around the kept roads"
 run_cmd streets -q -boundary "$WORK/boundary.gpkg" -roads "$WORK/roads.gpkg" -dsep-major 300 "$WORK/notkept.gpkg"
 expect_eq "$(ogrinfo -ro -q -sql "SELECT COUNT(*) AS n FROM streets WHERE source = 'existing'" "$WORK/notkept.gpkg" | sed -n 's/^  n (Integer.*) = //p')" "0" "roads kept without -keep-roads"
+# Without -dsep-major the major spacing is that of the -roads (2 A / L, at most 360 m): a grid of roads
+# every 250 m over the 2 km square gives about twice the streets of the fixed 360 m.
+$PY - "$WORK/grid_roads.csv" <<'PY'
+import sys
+with open(sys.argv[1], "w") as f:
+    f.write("id,WKT\n")
+    for i in range(8):
+        c = 125 + 250 * i
+        f.write(f'{2 * i},"LINESTRING({450000 + c} 5550000,{450000 + c} 5552000)"\n')
+        f.write(f'{2 * i + 1},"LINESTRING(450000 {5550000 + c},452000 {5550000 + c})"\n')
+PY
+ogr2ogr -q -f GPKG -a_srs EPSG:32633 -nln roads "$WORK/grid_roads.gpkg" "$WORK/grid_roads.csv"
+run_cmd streets -q -boundary "$WORK/boundary.gpkg" -roads "$WORK/grid_roads.gpkg" "$WORK/spaced.gpkg"
+expect_status 0
+run_cmd streets -q -boundary "$WORK/boundary.gpkg" -roads "$WORK/grid_roads.gpkg" -dsep-major 360 "$WORK/fixed.gpkg"
+expect_status 0
+spaced=$(feature_count "$WORK/spaced.gpkg" streets) fixed=$(feature_count "$WORK/fixed.gpkg" streets)
+[ "${spaced:-0}" -gt $((3 * ${fixed:-0} / 2)) ] || fail "-roads every 250 m give $spaced streets, the fixed 360 m $fixed"
 
 # Bad input: one ERROR line, exit status, nothing written.
 bad() {  # bad <status> <expected stderr substring> <args...>

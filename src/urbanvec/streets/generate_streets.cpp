@@ -73,6 +73,26 @@ void boxOf(const MultiPolygon& polygons, Vec2& lo, Vec2& hi) {
 
 }  // namespace
 
+double roadSpacing(const std::vector<LineString>& roads, const MultiPolygon& boundary,
+                   const MultiPolygon& water) {
+  geos::Context ctx;
+  geos::GeomPtr land = ctx.multiPolygon(boundary);
+  if (!water.empty())
+    land = ctx.own(GEOSDifference_r(ctx.handle(), land.get(), ctx.multiPolygon(water).get()),
+                   "cutting the water out of the boundary");
+  double area = 0.0, length = 0.0;
+  GEOSArea_r(ctx.handle(), land.get(), &area);
+  for (const LineString& l : roads) {
+    if (l.size() < 2) continue;
+    const geos::GeomPtr on = ctx.own(GEOSIntersection_r(ctx.handle(), ctx.lineString(l).get(), land.get()),
+                                     "clipping a road to the land");
+    double len = 0.0;
+    GEOSLength_r(ctx.handle(), on.get(), &len);
+    length += len;
+  }
+  return length > 0.0 ? 2.0 * area / length : 0.0;
+}
+
 StreetNetwork generateStreets(const StreetsInput& input, const StreetsOptions& options,
                               const Progress& progress) {
   if (input.design.size() > options.maxDesignElements)
@@ -194,6 +214,11 @@ StreetNetwork generateStreets(const StreetsInput& input, const StreetsOptions& o
   } else {
     for (int e = 0; e < static_cast<int>(graph.edgeCount()); ++e)
       pieces.push_back({graph.edge(e).line, edgeLevel[static_cast<std::size_t>(e)], 0});
+  }
+  {
+    BowOptions bow = options.bow;
+    bow.maxOffset = options.bowMaxOffsetRatio * t.minorDsep;
+    bowStreets(pieces, bow);
   }
   // The street graph: its pieces share their end points exactly.
   PlanarGraph streets;

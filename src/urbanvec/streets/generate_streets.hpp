@@ -34,6 +34,11 @@ struct StreetsOptions {
   FieldOptions field;
   TraceOptions trace;
   GraphNoiseOptions noise;
+  /// Curved streets; its maxOffset is set from the minor d_sep (bowMaxOffsetRatio).
+  BowOptions bow;
+  /// Largest bow = ratio × minor d_sep: a quarter, so two facing bows never close the gap d_test
+  /// (half a d_sep) between parallel streets.
+  double bowMaxOffsetRatio = 0.25;
   /// Field cell = ratio × minor d_sep when field.cellSize is 0 (spec §16: cell ≈ d_sep_minor / 4).
   double fieldCellRatio = 0.25;
   /// Minor d_sep = ratio × major d_sep when the caller gives none. The spec's major / 4 (§16, "pure
@@ -82,6 +87,13 @@ struct StreetNetwork {
   TraceStats stats;
   std::size_t tracedLines = 0;
 };
+
+/// The spacing of the given roads over the land (the boundary minus the water): a grid of spacing s
+/// has 2/s metres of road per m², so s = 2 A / L with A the land's area and L the roads' length on it
+/// (m). The default major d_sep when roads shape the field, so that the network takes their scale;
+/// 0 when no road lies on the land.
+double roadSpacing(const std::vector<LineString>& roads, const MultiPolygon& boundary,
+                   const MultiPolygon& water);
 
 /// Runs the pipeline. Throws InvalidInput for an empty design, design points outside the boundary,
 /// an empty boundary; InvalidOption for bad d_sep / d_test values. Water covering all land gives an

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "urbanvec/core/random.hpp"
+#include "urbanvec/core/segment_contact.hpp"
 #include "urbanvec/core/uniform_grid.hpp"
 
 namespace urbanvec::streets {
@@ -150,11 +152,53 @@ std::vector<Street> applyGraphNoise(const PlanarGraph& graph, const std::vector<
     }
     return rest.size() == 2 && dot(rest[0], rest[1]) > turnCos;
   };
+  // Whether edge g is a street at node n (a cut-back edge only at its stub's end).
+  auto counts = [&](int g, int n) {
+    const auto k = static_cast<std::size_t>(g);
+    if (fate[k] == Delete || edgeLevel[k] == StreetLevel::Outline) return false;
+    return fate[k] != Cut || (cutFromB[k] ? graph.edge(g).b : graph.edge(g).a) == n;
+  };
+  // Where a street leaving node `from` along edge f ends: the first node of street degree other than
+  // 2 (`from` itself round a ring); a cut-back edge ends at its stub's own dead end (-2 - g).
+  auto streetEnd = [&](int f, int from) {
+    int at = from;
+    for (std::size_t steps = 0; steps <= graph.edgeCount(); ++steps) {
+      if (fate[static_cast<std::size_t>(f)] == Cut) return -2 - f;
+      const int next = graph.edge(f).a == at ? graph.edge(f).b : graph.edge(f).a;
+      if (next == from || degree[static_cast<std::size_t>(next)] != 2) return next;
+      int other = -1;
+      for (int g : graph.node(next).edges)
+        if (g != f && counts(g, next)) other = g;
+      if (other < 0) return next;
+      at = next, f = other;
+    }
+    return from;
+  };
+  // Deleting e must not merge streets into a loop: a street from a node back to the same node (a
+  // ring left on one spur, or a ring with no junction at all), whose chord is 0.
+  auto makesLoop = [&](int e) {
+    const PlanarGraph::Edge& ed = graph.edge(e);
+    const auto k = static_cast<std::size_t>(e);
+    fate[k] = Delete;
+    --degree[static_cast<std::size_t>(ed.a)], --degree[static_cast<std::size_t>(ed.b)];
+    bool loop = false;
+    for (int m : {ed.a, ed.b}) {
+      if (degree[static_cast<std::size_t>(m)] != 2) continue;
+      std::vector<int> ends;
+      for (int g : graph.node(m).edges)
+        if (counts(g, m)) ends.push_back(streetEnd(g, m));
+      loop = loop || (ends.size() == 2 && ends[0] == ends[1]);
+    }
+    fate[k] = Keep;
+    ++degree[static_cast<std::size_t>(ed.a)], ++degree[static_cast<std::size_t>(ed.b)];
+    return loop;
+  };
   auto bendable = [&](int e) {
     const PlanarGraph::Edge& ed = graph.edge(e);
     if (fate[static_cast<std::size_t>(e)] != Keep || ed.a == ed.b) return false;
-    return (turnsAt(e, ed.a) && degree[static_cast<std::size_t>(ed.b)] >= 3) ||
-           (turnsAt(e, ed.b) && degree[static_cast<std::size_t>(ed.a)] >= 3);
+    return ((turnsAt(e, ed.a) && degree[static_cast<std::size_t>(ed.b)] >= 3) ||
+            (turnsAt(e, ed.b) && degree[static_cast<std::size_t>(ed.a)] >= 3)) &&
+           !makesLoop(e);
   };
   const int bends = static_cast<int>(std::lround(options.bendShare * minor.size()));
   for (int tries = 0, done = 0; tries < maxTries && done < bends; ++tries, ++index) {
@@ -177,6 +221,88 @@ std::vector<Street> applyGraphNoise(const PlanarGraph& graph, const std::vector<
     out.push_back({std::move(line), edgeLevel[k], 0});
   }
   return out;
+}
+
+void bowStreets(std::vector<Street>& pieces, const BowOptions& options) {
+  if (!(options.ratio > 0.0) || !(options.maxOffset > 0.0) || pieces.empty()) return;
+  Vec2 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()}, hi = lo * -1.0;
+  for (const Street& s : pieces)
+    for (const Vec2& v : s.line)
+      lo = {std::min(lo.x, v.x), std::min(lo.y, v.y)}, hi = {std::max(hi.x, v.x), std::max(hi.y, v.y)};
+  // Segments of the pieces' current geometry; a bowed piece's old segments are skipped by generation.
+  struct Seg {
+    Vec2 a, b;
+    int piece, generation;
+  };
+  std::vector<Seg> segs;
+  std::vector<int> generation(pieces.size(), 0);
+  UniformGrid<int> grid(
+      lo, hi, std::max({4.0 * options.maxOffset, (hi.x - lo.x) / 2048.0, (hi.y - lo.y) / 2048.0, 1e-6}));
+  auto add = [&](int piece) {
+    const LineString& l = pieces[static_cast<std::size_t>(piece)].line;
+    for (std::size_t i = 0; i + 1 < l.size(); ++i) {
+      grid.insert(l[i], l[i + 1], static_cast<int>(segs.size()));
+      segs.push_back({l[i], l[i + 1], piece, generation[static_cast<std::size_t>(piece)]});
+    }
+  };
+  for (int i = 0; i < static_cast<int>(pieces.size()); ++i) add(i);
+  // True when the bowed line meets another piece anywhere but at its own two ends.
+  auto blocked = [&](int piece, const LineString& l) {
+    const Vec2 first = l.front(), last = l.back();
+    bool hit = false;
+    for (std::size_t i = 0; !hit && i + 1 < l.size(); ++i) {
+      const Vec2 p = l[i], q = l[i + 1];
+      grid.forBox(p, q, [&](const std::vector<int>& bucket) {
+        for (std::size_t k = 0; !hit && k < bucket.size(); ++k) {
+          const Seg& s = segs[static_cast<std::size_t>(bucket[k])];
+          if (s.piece == piece || s.generation != generation[static_cast<std::size_t>(s.piece)]) continue;
+          const SegmentContact c = segmentContact(p, q, s.a, s.b);
+          if (c == SegmentContact::None) continue;
+          // A segment from an end node may touch the pieces meeting there, at that node only.
+          const bool atFirst = i == 0 && (s.a == first || s.b == first) &&
+                               distanceToSegment(s.a == first ? s.b : s.a, p, q) > 0.0 &&
+                               distanceToSegment(q, s.a, s.b) > 0.0;
+          const bool atLast = i + 2 == l.size() && (s.a == last || s.b == last) &&
+                              distanceToSegment(s.a == last ? s.b : s.a, p, q) > 0.0 &&
+                              distanceToSegment(p, s.a, s.b) > 0.0;
+          hit = c == SegmentContact::Crossing || !(atFirst || atLast);
+        }
+      });
+    }
+    return hit;
+  };
+  for (int i = 0; i < static_cast<int>(pieces.size()); ++i) {
+    Street& s = pieces[static_cast<std::size_t>(i)];
+    if ((s.level != StreetLevel::Major && s.level != StreetLevel::Minor) || s.line.size() < 2) continue;
+    const Vec2 a = s.line.front(), b = s.line.back();
+    const double chord = distance(a, b);
+    if (!(chord > 0.0)) continue;
+    const double u =
+        static_cast<double>(deriveSeed(options.seed ^ 0xb0e5ULL, static_cast<std::uint64_t>(i)) >> 11) *
+        0x1p-53;
+    double offset =
+        std::clamp((2.0 * u - 1.0) * options.ratio * chord, -options.maxOffset, options.maxOffset);
+    // The piece densified to at least 8 pieces (a traced street has a vertex every integration step, an
+    // eighth of the minor d_sep, already), each vertex moved along the chord's normal by offset × sin(π s /
+    // length), s its distance along the piece.
+    const LineString dense = densified(s.line, chord / 8.0);
+    const double total = length(dense);
+    const Vec2 normal{-(b.y - a.y) / chord, (b.x - a.x) / chord};
+    for (int attempt = 0; attempt < 2 && std::abs(offset) > 0.0; ++attempt, offset *= 0.5) {
+      LineString bowed{dense.front()};
+      double at = 0.0;
+      for (std::size_t k = 1; k < dense.size(); ++k) {
+        at += distance(dense[k - 1], dense[k]);
+        bowed.push_back(k + 1 == dense.size() ? dense.back()
+                                              : dense[k] + normal * (offset * std::sin(M_PI * at / total)));
+      }
+      if (blocked(i, bowed)) continue;
+      s.line = std::move(bowed);
+      ++generation[static_cast<std::size_t>(i)];
+      add(i);
+      break;
+    }
+  }
 }
 
 }  // namespace urbanvec::streets

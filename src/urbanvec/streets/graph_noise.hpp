@@ -4,6 +4,7 @@
 // turns the crossings at its ends into T-junctions; a partial one leaves a dead end.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "urbanvec/core/geometry.hpp"
@@ -34,6 +35,32 @@ struct GraphNoiseOptions {
   /// this (degrees).
   double minTurnDegrees = 45.0;
 };
+
+/// Curved streets (the authors' perpendicular Perlin jitter, spec Appendix A, with the nodes held
+/// fixed): each traced piece (major or minor, not an existing road or an outline) between two nodes
+/// bows sideways by a half sine, zero at its ends, of amplitude u × ratio × its chord, u uniform in
+/// [−1, 1] drawn per piece from the seed, at most maxOffset metres. A tensor field's streets run
+/// straight between their crossings (circuity 1.00-1.02, under the 5th percentile of the world's
+/// cities, 1.02, Boeing 2020), and a rotation of the field does not change that (measured in
+/// docs/streets.md); real streets curve between intersections. A bow that would cross or touch
+/// another piece (a street, the boundary, the water's edge) anywhere but at its own ends is halved,
+/// then dropped, so the graph and its nodes stay as they are.
+struct BowOptions {
+  /// Largest bow as a share of a piece's chord [INFERENCE: the spec gives no value]. A half sine of
+  /// relative amplitude r adds about (π r)² / 4 to a piece's circuity, so u uniform in [−1, 1] adds
+  /// π² ratio² / 12 on average: 0.033 at 0.2, which lifts a straight traced grid into Boeing's range
+  /// (1.02-1.10); of 0, 0.1, 0.15, 0.2 the one that holds that range most often on the generated
+  /// areas of bench/streets/compare.sh, seeds 1-8 (28 of 32; docs/streets.md). 0 = off.
+  double ratio = 0.2;
+  /// Largest bow (m); generateStreets sets it to StreetsOptions::bowMaxOffsetRatio × the minor d_sep
+  /// (a quarter), so that two facing bows never close the gap d_test between parallel streets.
+  double maxOffset = 20.0;
+  std::uint64_t seed = 1;
+};
+
+/// Bows the traced pieces in place (see BowOptions). Deterministic: the draws are numbered by the
+/// pieces' order.
+void bowStreets(std::vector<Street>& pieces, const BowOptions& options);
 
 /// The pieces that remain: each graph edge's line and level, minus the deleted ones, with cut-back
 /// edges shortened. Only minor edges whose two ends have degree >= minEndDegree at that moment are

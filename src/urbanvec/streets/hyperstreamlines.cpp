@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "urbanvec/core/error.hpp"
+#include "urbanvec/core/random.hpp"
 #include "urbanvec/core/uniform_grid.hpp"
 #include "urbanvec/streets/polygon_index.hpp"
 
@@ -273,14 +274,49 @@ class Tracer {
                                water_.distanceToEdge(s, margin) >= margin);
   }
 
-  /// Traces both directions from s and joins them through s.
+  /// Traces both directions from s and joins them through s. A minor road that joins a street at both
+  /// ends stops d_test short of one of them instead, each end with chance stopShortShare (drawn per
+  /// end from the run seed and the trace's number, so the network does not depend on threads).
   LineString trace(const Vec2& s, StreetLevel l, int family) {
+    const std::uint64_t index = traces_++;
     Half forward = traceHalf(s, l, family, 1.0);
     if (forward.stop == Stop::Loop) return forward.points;
     Half backward = traceHalf(s, l, family, -1.0);
     LineString line(backward.points.rbegin(), backward.points.rend());
     line.insert(line.end(), forward.points.begin() + 1, forward.points.end());
+    if (l == StreetLevel::Minor && o_.stopShortShare > 0.0) {
+      auto stopsShort = [&](std::uint64_t end) {
+        return static_cast<double>(deriveSeed(o_.seed ^ 0x5707'5402ULL, 2 * index + end) >> 11) * 0x1p-53 <
+               o_.stopShortShare;
+      };
+      // Only a street that joins streets at both ends may stop short, and at one end only: it stays
+      // attached by the other (a cul-de-sac), never a street cut off from the network.
+      const bool both = forward.stop == Stop::Junction && backward.stop == Stop::Junction;
+      const bool forwardShort = both && stopsShort(0), backwardShort = both && !forwardShort && stopsShort(1);
+      if (forwardShort) line = cutTail(line, o_.dtestRatio * dsep(l, line.back()));
+      if (backwardShort) {
+        std::reverse(line.begin(), line.end());
+        line = cutTail(line, o_.dtestRatio * dsep(l, line.back()));
+        std::reverse(line.begin(), line.end());
+      }
+    }
     return line;
+  }
+
+  /// The line without its last `gap` metres (a single point when it is shorter).
+  static LineString cutTail(const LineString& line, double gap) {
+    double keep = length(line) - gap;
+    LineString out{line.front()};
+    for (std::size_t i = 0; i + 1 < line.size() && keep > 0.0; ++i) {
+      const double len = distance(line[i], line[i + 1]);
+      if (len >= keep) {
+        out.push_back(line[i] + (line[i + 1] - line[i]) * (keep / len));
+        break;
+      }
+      out.push_back(line[i + 1]);
+      keep -= len;
+    }
+    return out;
   }
 
   /// The family a road running along `dir` at p follows: the eigenvector closer to its direction.
@@ -431,6 +467,7 @@ class Tracer {
   TraceStats& stats_;
   PolygonIndex land_, water_, parks_;
   double h_ = 1.0, referenceR_ = 0.0, maxLength_ = 0.0;
+  std::uint64_t traces_ = 0;  ///< lines traced so far (numbers the stop-short draws)
   Vec2 lo_, hi_;
   PointGrid points_[2][2];
   SegmentGrid all_, major_;

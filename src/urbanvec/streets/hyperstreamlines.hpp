@@ -49,6 +49,19 @@ struct TraceOptions {
   /// used: a street seeded on the edge (at the end of a street clipped there) leaves it at a right
   /// angle, and the two meet at a corner on the edge that no junction explains [INFERENCE; 0 = off].
   double edgeSeedRatio = 1.0;
+  /// Share of the ends of minor roads that would join a street (a T-junction on a major road or a
+  /// look-ahead join, §8.3, §12) which stop d_test short of it instead and stay dangling: cul-de-sacs
+  /// and streets that do not reach the next one (spec §8.3 "the line ends as a dangling end",
+  /// §13.6 "streets that stop"). Each end draws its own chance from the run seed; only a road that
+  /// joins streets at both ends stops short, at one end at most, so none is cut off. A traced network
+  /// without it ends almost every minor road on the next street, so its dead-end share stays under
+  /// the 5th percentile of the world's cities (0.05, Boeing 2020) [INFERENCE: no value in the spec;
+  /// the default puts the generated networks near the middle of Boeing's 0.05-0.30: medians 0.065-
+  /// 0.206 over bench/streets/compare.sh's generated areas, seeds 1-8, where 0.25 and 0.35 lower
+  /// the 3-way share more than they add (docs/streets.md); 0 = off].
+  double stopShortShare = 0.15;
+  /// Seed of the per-end draws (the run seed).
+  std::uint64_t seed = 1;
   /// Trace minor roads (the second level).
   bool minorRoads = true;
   /// Minor-road seeds lie this far (m) beside the major road they start from, so that they begin in

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <map>
 #include <random>
 #include <vector>
 
@@ -45,7 +47,45 @@ StreetsOptions quiet() {
   o.noise.fullShare = 0.0;
   o.noise.partialShare = 0.0;
   o.noise.bendShare = 0.0;
+  o.trace.stopShortShare = 0.0;
+  o.bow.ratio = 0.0;
   return o;
+}
+
+/// A traced grid: one grid element at `degrees` in the square [0, side]², no noise of any kind, major
+/// and minor d_sep as given; `tweak` then sets the option under test.
+StreetNetwork tracedGrid(double side, double degrees, double majorDsep, double minorDsep,
+                         const std::function<void(StreetsOptions&)>& tweak) {
+  StreetsOptions o = quiet();
+  o.trace.majorDsep = majorDsep;
+  o.trace.minorDsep = minorDsep;
+  tweak(o);
+  return generateStreets(oneGridElement(square(0, 0, side), {side / 2, side / 2}, degrees), o);
+}
+
+/// Streets that touch or cross each other anywhere but at shared end points.
+int improperContacts(const std::vector<LineString>& lines) {
+  int bad = 0;
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    for (std::size_t j = i + 1; j < lines.size(); ++j)
+      for (std::size_t a = 0; a + 1 < lines[i].size(); ++a)
+        for (std::size_t b = 0; b + 1 < lines[j].size(); ++b) {
+          const Vec2 p = lines[i][a], q = lines[i][a + 1], r = lines[j][b], t = lines[j][b + 1];
+          if (std::max(p.x, q.x) < std::min(r.x, t.x) || std::max(r.x, t.x) < std::min(p.x, q.x) ||
+              std::max(p.y, q.y) < std::min(r.y, t.y) || std::max(r.y, t.y) < std::min(p.y, q.y))
+            continue;
+          const double d = std::min({distanceToSegment(p, r, t), distanceToSegment(q, r, t),
+                                     distanceToSegment(r, p, q), distanceToSegment(t, p, q)});
+          const bool sharedEnd =
+              (a == 0 && (p == lines[j].front() || p == lines[j].back())) ||
+              (a + 2 == lines[i].size() && (q == lines[j].front() || q == lines[j].back()));
+          const double o1 = cross(q - p, r - p), o2 = cross(q - p, t - p), o3 = cross(t - r, p - r),
+                       o4 = cross(t - r, q - r);
+          const bool crossing =
+              ((o1 > 0) != (o2 > 0)) && ((o3 > 0) != (o4 > 0)) && o1 != 0 && o2 != 0 && o3 != 0 && o4 != 0;
+          if (crossing || (d == 0.0 && !sharedEnd)) ++bad;
+        }
+  return bad;
 }
 
 }  // namespace
@@ -262,6 +302,8 @@ TEST(Streets, DeterministicForAnyThreadCount) {
   for (std::size_t i = 0; i < a.streets.size(); ++i) ASSERT_EQ(a.streets[i].line, b.streets[i].line);
   // Another seed moves the noise and the graph noise.
   o.field.seed = 2;
+  o.trace.seed = 2;
+  o.bow.seed = 2;
   o.noise.startIndex = 3;
   const StreetNetwork c = generateStreets(in, o);
   bool differs = c.streets.size() != a.streets.size();
@@ -399,6 +441,187 @@ TEST(GraphNoise, BendsTurnTJunctionsIntoCorners) {
   EXPECT_GT(bent.circuity, 1.02);
   EXPECT_NEAR(bent.shareDeadEnd * bent.nodes, 40.0, 1e-9);
   EXPECT_LT(bent.share3Way * bent.nodes, straight.share3Way * straight.nodes);
+}
+
+TEST(GraphNoise, BowsCurveStreetsBetweenFixedNodes) {
+  // A 6 x 6 grid of 100 m pieces (traced streets), one existing road and an outline, and two parallel
+  // streets 2 m apart whose bows towards each other would cross: bows keep every end, curve the traced
+  // pieces (a half sine of relative amplitude r adds about (pi r)^2 / 4 to the circuity), leave the
+  // other pieces alone and never make a contact.
+  std::vector<Street> pieces;
+  for (int i = 0; i < 6; ++i)
+    for (int k = 0; k < 5; ++k) {
+      pieces.push_back({{{i * 100.0, k * 100.0}, {i * 100.0, k * 100.0 + 100.0}}, StreetLevel::Minor, 0});
+      pieces.push_back({{{k * 100.0, i * 100.0}, {k * 100.0 + 100.0, i * 100.0}}, StreetLevel::Major, 0});
+    }
+  pieces.push_back({{{700, 0}, {700, 500}}, StreetLevel::Existing, 0});
+  pieces.push_back({{{-10, -10}, {510, -10}}, StreetLevel::Outline, 0});
+  pieces.push_back({{{800, 0}, {800, 100}}, StreetLevel::Minor, 0});
+  pieces.push_back({{{802, 0}, {802, 100}}, StreetLevel::Minor, 0});
+  const std::vector<Street> before = pieces;
+  BowOptions o;
+  o.ratio = 0.2;
+  o.maxOffset = 30.0;
+  bowStreets(pieces, o);
+  ASSERT_EQ(pieces.size(), before.size());
+  double len = 0.0, chord = 0.0;
+  int bowed = 0;
+  std::vector<LineString> lines;
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    EXPECT_EQ(pieces[i].line.front(), before[i].line.front());
+    EXPECT_EQ(pieces[i].line.back(), before[i].line.back());
+    if (before[i].level == StreetLevel::Existing || before[i].level == StreetLevel::Outline)
+      EXPECT_EQ(pieces[i].line, before[i].line);
+    if (i < 60) {
+      len += length(pieces[i].line);
+      chord += distance(pieces[i].line.front(), pieces[i].line.back());
+      bowed += pieces[i].line != before[i].line;
+    }
+    lines.push_back(pieces[i].line);
+  }
+  EXPECT_GT(bowed, 50);
+  EXPECT_GT(len / chord, 1.01);
+  EXPECT_LT(len / chord, 1.0 + std::pow(M_PI * 0.2, 2) / 4.0 + 1e-3);
+  EXPECT_EQ(improperContacts(lines), 0);
+  // The two close parallels: at most one of them bows, and then away from the other (or not at all).
+  const double gapMid =
+      std::abs(pieces[63].line[pieces[63].line.size() / 2].x - pieces[62].line[pieces[62].line.size() / 2].x);
+  EXPECT_GT(gapMid, 0.0);
+  // Deterministic, and another seed draws other bows.
+  std::vector<Street> again = before, other = before;
+  bowStreets(again, o);
+  for (std::size_t i = 0; i < pieces.size(); ++i) EXPECT_EQ(again[i].line, pieces[i].line);
+  o.seed = 2;
+  bowStreets(other, o);
+  bool differs = false;
+  for (std::size_t i = 0; i < pieces.size(); ++i) differs = differs || other[i].line != pieces[i].line;
+  EXPECT_TRUE(differs);
+}
+
+TEST(Streets, BowsRaiseTheCircuityOfATracedGrid) {
+  // A traced grid (one grid element, no field noise) has straight streets, circuity 1; bows curve them
+  // between their nodes: the same nodes, circuity above Boeing's 5th percentile (1.02), no contact.
+  auto run = [](double ratio) {
+    return tracedGrid(2000, 20.0, 200, 100, [&](StreetsOptions& o) { o.bow.ratio = ratio; });
+  };
+  const StreetNetwork straight = run(0.0), bowed = run(BowOptions{}.ratio);
+  auto metricsOf = [](const StreetNetwork& n) {
+    std::vector<LineString> l;
+    for (const StreetEdge& s : n.streets) l.push_back(s.line);
+    return measureStreets(l, {});
+  };
+  const StreetMetrics a = metricsOf(straight), b = metricsOf(bowed);
+  EXPECT_LT(a.circuity, 1.001);
+  EXPECT_GT(b.circuity, 1.02);
+  // Bows of u x ratio x chord, u uniform in [-1, 1], add about pi^2 ratio^2 / 12 (a few are halved).
+  const double r = BowOptions{}.ratio;
+  EXPECT_NEAR(b.circuity - 1.0, M_PI * M_PI * r * r / 12.0, 0.008);
+  EXPECT_EQ(a.nodes, b.nodes);
+  EXPECT_DOUBLE_EQ(a.share4Way, b.share4Way);
+  ASSERT_EQ(straight.nodes.size(), bowed.nodes.size());
+  for (std::size_t i = 0; i < straight.nodes.size(); ++i) EXPECT_EQ(straight.nodes[i].p, bowed.nodes[i].p);
+  std::vector<LineString> l;
+  for (const StreetEdge& s : bowed.streets) l.push_back(s.line);
+  EXPECT_EQ(improperContacts(l), 0);
+}
+
+TEST(Streets, StopShortLeavesDeadEndsWhereStreetsWouldJoin) {
+  // A traced grid has no dead end inside: every minor road ends on a major road. With a stop-short
+  // share s, about s of those ends stop d_test short of the road instead (dead ends), d_test from it.
+  auto run = [](double share) {
+    return tracedGrid(3000, 20.0, 300, 100, [&](StreetsOptions& o) { o.trace.stopShortShare = share; });
+  };
+  auto inside = [](const Vec2& p) { return p.x > 150 && p.y > 150 && p.x < 2850 && p.y < 2850; };
+  auto count = [&](const StreetNetwork& n, int degree) {
+    int k = 0;
+    for (const StreetNode& v : n.nodes) k += v.degree == degree && inside(v.p);
+    return k;
+  };
+  const StreetNetwork none = run(0.0), some = run(0.3);
+  const int tees = count(none, 3);
+  ASSERT_GT(tees, 100);
+  EXPECT_EQ(count(none, 1), 0);
+  const int dead = count(some, 1);
+  EXPECT_GT(dead, 0.15 * tees);
+  EXPECT_LT(dead, 0.45 * tees);
+  // Each dead end lies d_test (50 m) short of the street it would have met: no street closer than
+  // 40 m other than its own.
+  for (const StreetNode& v : some.nodes) {
+    if (v.degree != 1 || !inside(v.p)) continue;
+    double nearest = 1e300;
+    for (const StreetEdge& s : some.streets) {
+      if (s.line.front() == v.p || s.line.back() == v.p) continue;
+      for (std::size_t i = 0; i + 1 < s.line.size(); ++i)
+        nearest = std::min(nearest, distanceToSegment(v.p, s.line[i], s.line[i + 1]));
+    }
+    EXPECT_GT(nearest, 40.0) << v.p.x << " " << v.p.y;
+  }
+  // However many ends stop short, no street is cut off: the network stays one connected piece.
+  auto pieces = [](const StreetNetwork& n) {
+    std::map<std::pair<double, double>, int> id;
+    std::vector<int> parent;
+    auto node = [&](const Vec2& p) {
+      const auto [it, added] = id.emplace(std::make_pair(p.x, p.y), static_cast<int>(parent.size()));
+      if (added) parent.push_back(it->second);
+      return it->second;
+    };
+    std::function<int(int)> root = [&](int i) { return parent[i] == i ? i : parent[i] = root(parent[i]); };
+    for (const StreetEdge& s : n.streets) parent[root(node(s.line.front()))] = root(node(s.line.back()));
+    int roots = 0;
+    for (int i = 0; i < static_cast<int>(parent.size()); ++i) roots += root(i) == i;
+    return roots;
+  };
+  EXPECT_EQ(pieces(none), 1);
+  EXPECT_EQ(pieces(run(1.0)), 1);
+}
+
+TEST(Streets, RoadSpacingIsThatOfAGridWithAsMuchRoad) {
+  // Roads every 200 m across a 1000 m square (x, y = 100, 300, ..., 900): 2 A / L = 200 m; their parts
+  // outside the boundary do not count. With water over 620 <= x <= 980 only the land counts: 0.64 km²
+  // and 3 verticals of 1000 m plus 5 horizontals of 620 + 20 m, 2 A / L = 1.28e6 / 6200.
+  std::vector<LineString> roads;
+  for (int i = 0; i < 5; ++i) {
+    roads.push_back({{100.0 + 200 * i, -300}, {100.0 + 200 * i, 1300}});
+    roads.push_back({{-300, 100.0 + 200 * i}, {1300, 100.0 + 200 * i}});
+  }
+  EXPECT_NEAR(roadSpacing(roads, square(0, 0, 1000), {}), 200.0, 1e-9);
+  const MultiPolygon water{{{{620, -100}, {980, -100}, {980, 1100}, {620, 1100}, {620, -100}}, {}}};
+  EXPECT_NEAR(roadSpacing(roads, square(0, 0, 1000), water), 1.28e6 / 6200.0, 1e-9);
+  EXPECT_EQ(roadSpacing({{{2000, 0}, {3000, 0}}}, square(0, 0, 1000), {}), 0.0);
+}
+
+TEST(GraphNoise, BendsNeverLeaveARingOnOneSpur) {
+  // A square ring (major) joined at (0, 0) by a spur from the west and at (100, 100) by a minor street
+  // to a crossing street at x = 200. Deleting the minor street would turn the corner at (100, 100),
+  // but it would leave the ring on its one spur: a street from (0, 0) round to (0, 0), chord 0. So no
+  // bend is taken, and no street of the result is a loop.
+  const std::vector<LineString> lines{{{0, 0}, {100, 0}, {100, 100}, {0, 100}, {0, 0}},
+                                      {{-100, 0}, {0, 0}},
+                                      {{100, 100}, {200, 100}},
+                                      {{200, 0}, {200, 200}}};
+  const PlanarGraph g = PlanarGraph::fromLines(lines);
+  std::vector<StreetLevel> levels(g.edgeCount(), StreetLevel::Major);
+  int minorEdges = 0;
+  for (int e = 0; e < static_cast<int>(g.edgeCount()); ++e) {
+    const LineString& l = g.edge(e).line;
+    if ((l.front() == Vec2{100, 100} && l.back() == Vec2{200, 100}) ||
+        (l.back() == Vec2{100, 100} && l.front() == Vec2{200, 100}))
+      levels[static_cast<std::size_t>(e)] = StreetLevel::Minor, ++minorEdges;
+  }
+  ASSERT_EQ(minorEdges, 1);
+  GraphNoiseOptions o;
+  o.fullShare = 0.0;
+  o.partialShare = 0.0;
+  o.bendShare = 1.0;
+  const std::vector<Street> kept = applyGraphNoise(g, levels, o);
+  EXPECT_EQ(kept.size(), g.edgeCount());
+  std::vector<LineString> l;
+  for (const Street& s : kept) l.push_back(s.line);
+  const PlanarGraph k = PlanarGraph::fromLines(l);
+  for (const std::vector<int>& chain : k.chains()) {
+    const std::vector<int> ends = k.chainNodes(chain);
+    EXPECT_NE(ends.front(), ends.back());
+  }
 }
 
 TEST(Streets, DensityAndParksWidenTheSpacing) {
