@@ -166,6 +166,14 @@ app::CommandSpec spec() {
                   .atLeast(0)
                   .atMost(90)
                   .isAdvanced());
+  o.push_back(
+      option("-through-fit-reach", ValueType::Real, "<cells>",
+             "An intersection's straight arms are fitted on their road up to this far from it, while "
+             "the road stays straight (B7; 5, the approach window, or less = fitted within the window).")
+          .byDefault(app::numberText(d.throughRoads.fitReach))
+          .withUnit("cells")
+          .atLeast(0)
+          .isAdvanced());
   o.push_back(option("-straight-slack", ValueType::Real, "<cells>",
                      "A road is straight when its cells lie within the band of a digital straight line "
                      "plus this (B7).")
@@ -279,6 +287,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   options.throughRoads.enabled = !args.flag("-no-through-roads");
   options.throughRoads.pairAngle = args.real("-through-angle");
   options.throughRoads.slack = args.real("-straight-slack");
+  options.throughRoads.fitReach = args.real("-through-fit-reach");
   options.cycles.maxCycleNodes = static_cast<int>(args.integer("-cycle-nodes"));
   options.intersections.deadEndAngle = args.real("-dead-end-angle");
   options.cleanIntersectionPatches = !args.flag("-no-patch-cleaning");
