@@ -271,6 +271,8 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   rules.inputs = ctx.inputs;
   io::RasterWriteOptions raster;
   raster.creationOptions = {"COMPRESS=DEFLATE"};
+  // vectorize reads it: roads rasterized from mapped streets are real roads (-road-removals auto).
+  raster.metadata[app::kRoadSourceKey] = app::kMappedStreets;
   for (const std::string& co : args.values("-co")) raster.creationOptions.push_back(co);
   io::checkRasterWriteOptions(raster);
   io::AtomicOutput output(outputDir, rules);

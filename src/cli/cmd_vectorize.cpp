@@ -166,6 +166,14 @@ app::CommandSpec spec() {
                   .atLeast(0)
                   .atMost(90)
                   .isAdvanced());
+  o.push_back(
+      option("-through-fit-reach", ValueType::Real, "<cells>",
+             "An intersection's straight arms are fitted on their road up to this far from it, while "
+             "the road stays straight (B7; 5, the approach window, or less = fitted within the window).")
+          .byDefault(app::numberText(d.throughRoads.fitReach))
+          .withUnit("cells")
+          .atLeast(0)
+          .isAdvanced());
   o.push_back(option("-straight-slack", ValueType::Real, "<cells>",
                      "A road is straight when its cells lie within the band of a digital straight line "
                      "plus this (B7).")
@@ -184,10 +192,17 @@ app::CommandSpec spec() {
                      "Skip the extraneous intersection patch cleaning (A3): keep the secondary strips "
                      "beside primary roads.")
                   .isAdvanced());
+  o.push_back(
+      option("-road-removals", ValueType::Choice, "<mode>",
+             "The roads the documents remove on purpose (A3 secondary strips beside a primary, B4 short "
+             "cycles, B5 dead ends near another road): paper removes them; none keeps every road the grid "
+             "shows (B4 then removes only loops around no land cell); auto is none on grids gridify "
+             "rasterized from mapped streets (metadata URBANVEC_ROAD_SOURCE=mapped_streets) and paper "
+             "otherwise. With auto, -no-patch-cleaning, -cycle-nodes or -dead-end-angle select paper.")
+          .oneOf({"auto", "paper", "none"})
+          .byDefault("auto"));
   o.push_back(option("-keep-all-roads", ValueType::Flag, "",
-                     "Keep the roads the documents remove on purpose: no patch cleaning (A3), no "
-                     "short-cycle removal (B4), no dead-end removal (B5); for grids rasterized from "
-                     "mapped streets. Not with -cycle-nodes or -dead-end-angle.")
+                     "Alias of -road-removals none. Not with -cycle-nodes or -dead-end-angle.")
                   .isAdvanced());
   o.push_back(option("-cycle-nodes", ValueType::Integer, "<n>",
                      "Road cycles of at most this many nodes lose a segment (B4).")
@@ -272,17 +287,29 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   options.throughRoads.enabled = !args.flag("-no-through-roads");
   options.throughRoads.pairAngle = args.real("-through-angle");
   options.throughRoads.slack = args.real("-straight-slack");
+  options.throughRoads.fitReach = args.real("-through-fit-reach");
   options.cycles.maxCycleNodes = static_cast<int>(args.integer("-cycle-nodes"));
   options.intersections.deadEndAngle = args.real("-dead-end-angle");
   options.cleanIntersectionPatches = !args.flag("-no-patch-cleaning");
-  if (args.flag("-keep-all-roads")) {
-    for (const char* removal : {"-cycle-nodes", "-dead-end-angle"})
-      if (args.given(removal))
-        throw invalidOption(std::string("-keep-all-roads switches the road removals off; do not give ") +
-                            removal + " with it");
-    options.cleanIntersectionPatches = false;
-    options.cycles.maxCycleNodes = 0;
-    options.intersections.deadEndAngle = 0.0;
+  {
+    const std::string mode = args.str("-road-removals");
+    const bool alias = args.flag("-keep-all-roads");
+    if (alias && args.given("-road-removals") && mode != "none")
+      throw invalidOption("-keep-all-roads is -road-removals none; do not give -road-removals " + mode +
+                          " with it");
+    const bool tuned =
+        args.given("-cycle-nodes") || args.given("-dead-end-angle") || args.flag("-no-patch-cleaning");
+    if (alias || mode == "none") {
+      for (const char* removal : {"-cycle-nodes", "-dead-end-angle"})
+        if (args.given(removal))
+          throw invalidOption(std::string(alias ? "-keep-all-roads" : "-road-removals none") +
+                              " switches the road removals off; do not give " + removal + " with it");
+      options.roadRemovals = vectorize::RoadRemovals::None;
+    } else if (mode == "paper" || tuned) {
+      options.roadRemovals = vectorize::RoadRemovals::Paper;
+    } else {
+      options.roadRemovals = vectorize::RoadRemovals::Auto;
+    }
   }
   options.intersections.primaryDistance = args.real("-primary-close");
   options.intersections.secondaryDistance = args.real("-secondary-close");

@@ -16,6 +16,11 @@ case "$info" in *"Pixel Size = (6.000000000000000,-6.000000000000000)"*) ;; *) f
 case "$info" in *"Type=Byte"*) ;; *) fail "landuse.tif is not Byte";; esac
 case "$(gdalinfo "$WORK/bub/density.tif")" in *"Type=Float32"*) ;; *) fail "density.tif is not Float32";; esac
 case "$(gdalinfo "$WORK/bub/parcels.tif")" in *"Type=Int32"*) ;; *) fail "parcels.tif is not Int32";; esac
+# Every raster says its roads come from mapped streets (vectorize -road-removals auto reads it).
+for r in landuse density parcels; do
+  case "$(gdalinfo "$WORK/bub/$r.tif")" in *"URBANVEC_ROAD_SOURCE=mapped_streets"*) ;;
+    *) fail "$r.tif lacks the metadata item URBANVEC_ROAD_SOURCE=mapped_streets";; esac
+done
 expect_eq "$(head -1 "$WORK/bub/parcels.csv")" "parcel_id,land_use,population,cells" "parcels.csv header"
 for layer in roads blocks parcels grid_info; do
   ogrinfo -ro -so "$WORK/bub/truth.gpkg" "$layer" >/dev/null 2>&1 || fail "truth.gpkg has no layer $layer"

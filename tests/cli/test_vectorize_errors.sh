@@ -99,6 +99,10 @@ expect_failure 2 "ERROR: -keep-all-roads switches the road removals off; do not 
   -keep-all-roads -cycle-nodes 12 "$WORK/town.tif"
 expect_failure 2 "ERROR: -keep-all-roads switches the road removals off; do not give -dead-end-angle with it" \
   -keep-all-roads -dead-end-angle 45 "$WORK/town.tif"
+expect_failure 2 "ERROR: -road-removals none switches the road removals off; do not give -cycle-nodes with it" \
+  -road-removals none -cycle-nodes 12 "$WORK/town.tif"
+expect_failure 2 "ERROR: -keep-all-roads is -road-removals none; do not give -road-removals paper with it" \
+  -keep-all-roads -road-removals paper "$WORK/town.tif"
 
 # A float raster whose values are not class codes is refused, pointing at -classes; with a -classes
 # table it works, and a table that misses a value names it. Float cells holding whole codes are fine.

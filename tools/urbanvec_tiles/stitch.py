@@ -125,15 +125,28 @@ def _drop_seam_vertices(poly_u, seams_x, seams_u):
     return out
 
 
-def _shared(inter):
-    """Whether an intersection of two pieces is a stretch of boundary (or an overlap), not a point."""
+def _line_length(g):
+    """Length of the lines in g (0 for points and empty parts)."""
+    t = ogr.GT_Flatten(g.GetGeometryType())
+    if t in (ogr.wkbLineString, ogr.wkbMultiLineString):
+        return g.Length()
+    if t == ogr.wkbGeometryCollection:
+        return sum(_line_length(g.GetGeometryRef(k)) for k in range(g.GetGeometryCount()))
+    return 0.0
+
+
+def _shared(inter, shortest=None):
+    """Whether an intersection of two pieces is a stretch of boundary (or an overlap), not a point: longer
+    than 1e-4 m, or (with `shortest`, the length of the shorter of the two cuts) all of that cut, so the
+    two halves of a sliver thinner than 1e-4 m that a seam crosses are one piece too."""
     t = ogr.GT_Flatten(inter.GetGeometryType())
     if t in (ogr.wkbPolygon, ogr.wkbMultiPolygon):
         return inter.GetArea() > 0
     if t in (ogr.wkbLineString, ogr.wkbMultiLineString):
-        return inter.Length() > 1e-4
+        length = inter.Length()
+        return length > 1e-4 or (shortest is not None and 0 < shortest <= length * (1 + 1e-6))
     if t == ogr.wkbGeometryCollection:
-        return any(_shared(inter.GetGeometryRef(k)) for k in range(inter.GetGeometryCount()))
+        return any(_shared(inter.GetGeometryRef(k), shortest) for k in range(inter.GetGeometryCount()))
     return False
 
 
@@ -174,7 +187,7 @@ def merge_polygons(pieces, frame, seams_x, seams_u, id_field):
                 if ea[1] < eb[0] - EPS or eb[1] < ea[0] - EPS or ea[3] < eb[2] - EPS or eb[3] < ea[2] - EPS:
                     continue
                 inter = cuts[a].Intersection(cuts[b])
-                if inter is not None and _shared(inter):
+                if inter is not None and _shared(inter, min(_line_length(cuts[a]), _line_length(cuts[b]))):
                     parent[find(a)] = find(b)
     groups = {}
     for i in range(len(pieces)):

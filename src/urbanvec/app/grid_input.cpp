@@ -215,6 +215,10 @@ vectorize::VectorizeInput loadGridInput(const GridInputPaths& paths, std::vector
   const Grid<double> raw = readRasterBand<double>(paths.landUse, luRole, &info, window);
   const int colOffset = window ? window->xoff : 0, rowOffset = window ? window->yoff : 0;
   in.spec = info.spec;
+  {
+    const auto source = info.metadata.find(kRoadSourceKey);
+    in.roadsFromMappedStreets = source != info.metadata.end() && source->second == kMappedStreets;
+  }
   in.originCol = colOffset;
   in.originRow = rowOffset;
   if (window) {  // the whole raster's frame and transform (GridSpec::frameCol, issue 22)

@@ -14,6 +14,11 @@
 
 namespace urbanvec::app {
 
+/// Metadata item gridify writes into its rasters: the roads were rasterized from mapped streets
+/// (VectorizeInput::roadsFromMappedStreets). A simulator's grid carries no such item.
+inline constexpr const char* kRoadSourceKey = "URBANVEC_ROAD_SOURCE";
+inline constexpr const char* kMappedStreets = "mapped_streets";
+
 struct GridInputPaths {
   std::string landUse;      ///< required
   std::string density;      ///< optional ("" = none)

@@ -56,6 +56,12 @@ RasterInfo describe(GDALDataset& ds) {
   const double nd = band->GetNoDataValue(&hasNodata);
   if (hasNodata) info.nodata = nd;
   info.bandCount = ds.GetRasterCount();
+  for (char** item = ds.GetMetadata(); item && *item; ++item) {
+    char* key = nullptr;
+    const char* value = CPLParseNameValue(*item, &key);
+    if (key && value) info.metadata[key] = value;
+    CPLFree(key);
+  }
   return info;
 }
 
@@ -208,6 +214,7 @@ void writeRasterBand(const std::string& path, const GridSpec& spec, const Grid<T
     OGRSpatialReference srs;
     if (srs.importFromWkt(spec.crsWkt.c_str()) == OGRERR_NONE) ds->SetSpatialRef(&srs);
   }
+  for (const auto& [key, value] : options.metadata) ds->SetMetadataItem(key.c_str(), value.c_str());
   GDALRasterBand* band = ds->GetRasterBand(1);
   if (nodata) band->SetNoDataValue(*nodata);
   if (band->RasterIO(GF_Write, 0, 0, grid.width, grid.height, const_cast<T*>(grid.cells.data()), grid.width,

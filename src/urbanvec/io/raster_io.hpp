@@ -1,6 +1,7 @@
 // Reading and writing single-band rasters with GDAL into plain grids.
 #pragma once
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,6 +16,8 @@ struct RasterInfo {
   std::string dataType;
   std::optional<double> nodata;
   int bandCount = 0;
+  /// The dataset's metadata items of the default domain (gdalinfo's "Metadata:"), NAME -> VALUE.
+  std::map<std::string, std::string> metadata;
 };
 
 /// Opens a raster and describes it; throws urbanvec::Error (naming the file) when it is missing or
@@ -50,6 +53,8 @@ GridSpec windowSpec(const GridSpec& full, const RasterWindow& window, const std:
 struct RasterWriteOptions {
   std::string format = "GTiff";
   std::vector<std::string> creationOptions;  ///< NAME=VALUE, GDAL's -co
+  /// Dataset metadata items written with the band (default domain), as gdal_edit -mo NAME=VALUE.
+  std::map<std::string, std::string> metadata;
 };
 
 /// Checks the format and its -co options before any work (throws invalidOption naming the option).

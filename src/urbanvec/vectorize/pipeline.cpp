@@ -123,12 +123,17 @@ void populationWarnings(const VectorizeInput& input, VectorizeResult& result) {
 
 }  // namespace
 
+bool keepsAllRoads(RoadRemovals removals, const VectorizeInput& input) {
+  return removals == RoadRemovals::None || (removals == RoadRemovals::Auto && input.roadsFromMappedStreets);
+}
+
 VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& options,
                           const Progress& progress) {
   validate(input);
   VectorizeResult result;
   result.cells = input.landUse;
   RoadGraph& graph = result.roads;
+  result.roadsKept = keepsAllRoads(options.roadRemovals, input);
 
   // Stage runner: progress sub-range, timing, per-stage peak memory, graph snapshot. The road stages
   // take the first 30% of the progress range when stages C-E follow.
@@ -175,6 +180,7 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
     return counts(result.blocks.size(), " blocks (", internal, " internal)");
   });
   run("A3", "patch cleaning", 0.05, false, [&](const Progress& p) {
+    if (result.roadsKept) return std::string("skipped (road removals: none, every secondary patch kept)");
     if (!options.cleanIntersectionPatches) return std::string("skipped (every secondary patch kept)");
     const PatchCleaningStats s = cleanIntersectionPatches(result.cells, p, options.patchCleaning);
     return counts(s.searches, " clusters searched, ", s.removedPatches, " patches removed");
@@ -222,15 +228,18 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
   });
   run("B4", "cycle removal", 0.15, true, [&](const Progress& p) {
     CycleRemovalOptions cycles = options.cycles;
-    if (options.keepDevelopedCycles) cycles.landUse = &result.cells;
+    if (options.keepDevelopedCycles || result.roadsKept) cycles.landUse = &result.cells;
+    cycles.keepLandCycles = result.roadsKept;
     CycleRemovalStats s = removeShortCycles(graph, cycles, p);
     result.cycleRemovedLinks = std::move(s.removedLinks);
     return counts(s.crossingsNoded, " crossings noded, ", s.segmentsRemoved, " segments removed in ",
-                  s.rounds, " rounds, ", s.developedFacesKept, " faces around developed land kept");
+                  s.rounds, " rounds, ", s.developedFacesKept,
+                  result.roadsKept ? " faces around land kept" : " faces around developed land kept");
   });
   run("B5", "intersection simplification", 0.05, true, [&](const Progress& p) {
     IntersectionSimplificationOptions simplification = options.intersections;
     if (options.keepRoadCellsCovered) simplification.coverCells = &result.cells;
+    if (result.roadsKept) simplification.deadEndAngle = 0.0;
     IntersectionSimplificationStats s = simplifyIntersections(graph, simplification, p);
     result.deadEndRemovedLinks = std::move(s.removedLinks);
     return counts(s.deadEndsRemoved, " dead ends removed, ", s.nodesContracted, " nodes contracted, ",

@@ -28,8 +28,23 @@
 
 namespace urbanvec::vectorize {
 
+/// Which of the roads the documents remove on purpose go (A3 the secondary strips beside a primary,
+/// B4 a segment of every short cycle, B5 dead ends near another road; docs/vectorize.md "Keeping every
+/// road"). On a simulator's grid they are artefacts; on a grid rasterized from mapped streets they are
+/// mostly real roads (service roads, slip roads, carriageways beside a primary, loops of lanes).
+enum class RoadRemovals {
+  Auto,   ///< None when VectorizeInput::roadsFromMappedStreets, else Paper
+  Paper,  ///< the documents' removals, as cleanIntersectionPatches, cycles and intersections set them
+  /// [beyond the documents] keep every road the grid shows: no A3, no B5 dead-end removal, and B4
+  /// removes only loops enclosing no land cell (CycleRemovalOptions::keepLandCycles: where a street
+  /// crosses a primary's staircase its cells beside the primary draw such loops).
+  None,
+};
+
 struct VectorizeOptions {
   RawBlockOptions rawBlocks;  ///< A2
+  /// The road removals of A3, B4 and B5 (see RoadRemovals); Auto reads the grid's origin.
+  RoadRemovals roadRemovals = RoadRemovals::Auto;
   /// A3 extraneous intersection patch cleaning. false keeps every secondary patch (beyond the
   /// documents): on grids rasterized from mapped streets the strips A3 removes beside a primary are
   /// mostly real service roads, slip roads and parallel carriageways (docs/vectorize.md, "Keeping
@@ -84,6 +99,8 @@ struct StageReport {
 };
 
 struct VectorizeResult {
+  /// The road removals resolved to None (RoadRemovals, keepsAllRoads).
+  bool roadsKept = false;
   /// Land-use codes after cleaning (kRemovedRoad where A3/A4.3 removed road).
   Grid<std::uint8_t> cells;
   std::vector<SimBlock> blocks;    ///< A2 simulated blocks, with their parcels (A5)
@@ -107,6 +124,9 @@ struct VectorizeResult {
   /// water, spines, parcels, vectorize_report.
   std::vector<Layer> layers;
 };
+
+/// Whether `removals` keeps every road of `input` (None, or Auto on a grid from mapped streets).
+bool keepsAllRoads(RoadRemovals removals, const VectorizeInput& input);
 
 /// Runs the pipeline. Throws urbanvec::Error (InvalidInput) on inconsistent input and Cancelled when
 /// the progress callback asks to stop.

@@ -40,6 +40,10 @@ struct VectorizeInput {
   /// it rather than from this grid's own edge, so a window (issue 22) classes a region it cuts as the
   /// whole grid does. urbanvec-tiles computes it over the whole grid, tile by tile.
   Grid<std::uint8_t> openRegions;
+  /// The grid was rasterized from mapped street centrelines (gridify records it in its rasters'
+  /// metadata, app/grid_input.hpp kRoadSourceKey), not drawn by a simulator: its roads are real roads,
+  /// and VectorizeOptions::roadRemovals = Auto keeps them (docs/vectorize.md, "Keeping every road").
+  bool roadsFromMappedStreets = false;
 };
 
 /// Working patch code beyond the nine classes: a patch that was road and was removed by A3 or A4.3

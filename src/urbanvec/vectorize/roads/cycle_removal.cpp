@@ -12,6 +12,7 @@
 #include "urbanvec/core/landuse.hpp"
 #include "urbanvec/core/planar_graph.hpp"
 #include "urbanvec/vectorize/roads/road_checks.hpp"
+#include "urbanvec/vectorize/vectorize_input.hpp"
 
 namespace urbanvec::vectorize {
 
@@ -42,7 +43,7 @@ RoadAdjacency roadAdjacency(const RoadGraph& g) {
 /// True when a cell centre inside the face (internal frame: x = col + 0.5, y = H - row - 0.5) holds
 /// developed land.
 bool enclosesDevelopedLand(const RoadGraph& g, const std::vector<int>& face,
-                           const Grid<std::uint8_t>& landUse) {
+                           const Grid<std::uint8_t>& landUse, bool anyLand) {
   Ring ring;
   ring.reserve(face.size() + 1);
   for (int n : face) ring.push_back(g.nodes[n].p);
@@ -57,7 +58,10 @@ bool enclosesDevelopedLand(const RoadGraph& g, const std::vector<int>& face,
        ++col)
     for (int row = h - static_cast<int>(std::ceil(maxY)) - 1; row <= h - static_cast<int>(std::floor(minY));
          ++row) {
-      if (!landUse.inside(col, row) || !isDeveloped(static_cast<LandUse>(landUse.at(col, row)))) continue;
+      if (!landUse.inside(col, row)) continue;
+      const std::uint8_t code = landUse.at(col, row);
+      if (anyLand ? isRoadCode(code) || code == kRemovedRoad : !isDeveloped(static_cast<LandUse>(code)))
+        continue;
       const Vec2 centre(dx + col + 0.5, h - row - 0.5);
       // Even-odd ray cast.
       bool inside = false;
@@ -128,7 +132,10 @@ CycleRemovalStats removeShortCycles(RoadGraph& graph, const CycleRemovalOptions&
   for (int round = 0; round < options.maxRounds; ++round) {
     const RoadAdjacency adj = roadAdjacency(graph);
     auto roadDegree = [&](int i) { return adj.offsets[i + 1] - adj.offsets[i]; };
-    std::vector<std::vector<int>> faces = walkFaces(graph, adj, options.maxFaceArea);
+    std::vector<std::vector<int>> faces =
+        walkFaces(graph, adj,
+                  options.keepLandCycles ? std::min(options.maxFaceArea, options.landlessFaceArea)
+                                         : options.maxFaceArea);
     // Distinct-node count per face; smallest faces first (deterministic).
     std::vector<std::pair<int, int>> order;
     for (size_t f = 0; f < faces.size(); ++f) {
@@ -136,7 +143,8 @@ CycleRemovalStats removeShortCycles(RoadGraph& graph, const CycleRemovalOptions&
       std::sort(nodes.begin(), nodes.end());
       const int distinct = static_cast<int>(std::unique(nodes.begin(), nodes.end()) - nodes.begin());
       if (distinct > options.maxCycleNodes) continue;
-      if (options.landUse && enclosesDevelopedLand(graph, faces[f], *options.landUse)) {
+      if (options.landUse &&
+          enclosesDevelopedLand(graph, faces[f], *options.landUse, options.keepLandCycles)) {
         if (round == 0) ++stats.developedFacesKept;
         continue;
       }

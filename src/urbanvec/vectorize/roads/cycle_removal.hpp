@@ -28,6 +28,17 @@ struct CycleRemovalOptions {
   /// road around a developed block merges it into its neighbour. Null = the documents' rule on every
   /// short face.
   const Grid<std::uint8_t>* landUse = nullptr;
+  /// With landUse: a face keeps its roads when it encloses any land cell centre (any cell that is not
+  /// road: developed, unused, water, reserved), not only developed land. Only loops drawn around road
+  /// cells alone go: where a street crosses a primary's staircase, its cells beside the primary make
+  /// such loops, and a loop of real roads on a grid always holds land between them (the road-removal
+  /// mode `none` of grids rasterized from mapped streets, docs/vectorize.md "Keeping every road").
+  bool keepLandCycles = false;
+  /// With keepLandCycles, only faces enclosing at most this area go, in pw^2: the cells where a
+  /// 1-wide street crosses a 2-wide primary (a 2 x 2 window and the steps of the street's staircase
+  /// beside it). Longer loops around road cells alone are carriageways side by side in a band of road
+  /// cells, real roads (measured in docs/vectorize.md, "Keeping every road").
+  double landlessFaceArea = 4.0;
 };
 
 struct CycleRemovalStats {

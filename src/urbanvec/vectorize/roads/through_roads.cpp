@@ -142,7 +142,8 @@ void restore(RoadGraph& graph, const std::vector<int>& nodes, const std::vector<
 
 /// One road leaving an intersection: its nodes within the window (the last may be the next
 /// intersection or dead end, which is fitted but not moved) and the line fitted to the placements of
-/// those beyond the inner radius.
+/// those beyond the inner radius, and of the road beyond the window while it stays straight
+/// (ThroughRoadOptions::fitReach).
 struct Arm {
   std::vector<int> nodes;
   std::size_t movable = 0;  ///< nodes[0, movable) may be moved
@@ -154,9 +155,16 @@ struct Arm {
 Arm buildArm(const RoadGraph& graph, int at, int next, const ThroughRoadOptions& options) {
   Arm arm;
   const Vec2 origin = graph.nodes[at].placed;
-  for (int k : followChain(graph, at, next)) {
+  const std::vector<int> chain = followChain(graph, at, next);
+  std::size_t beyond = chain.size();  // the first chain node past the window, when the chain goes on
+  for (std::size_t c = 0; c < chain.size(); ++c) {
+    const int k = chain[c];
     const RoadNode& n = graph.nodes[k];
-    if (k == at || !isRoad(n) || distance(n.placed, origin) > options.window) break;
+    if (k == at || !isRoad(n)) break;
+    if (distance(n.placed, origin) > options.window) {
+      beyond = c;
+      break;
+    }
     arm.nodes.push_back(k);
     if (isChainEnd(graph, k)) break;
     arm.movable = arm.nodes.size();
@@ -167,8 +175,31 @@ Arm buildArm(const RoadGraph& graph, int at, int next, const ThroughRoadOptions&
       placements.push_back(graph.nodes[k].placed);
   if (placements.size() < 2) return arm;
   fitLine(placements, arm.centre, arm.direction);
-  if (dot(arm.direction, arm.centre - origin) < 0) arm.direction = arm.direction * -1.0;
   arm.fitted = consistentWithLine(placements, arm.centre, arm.direction, options.slack);
+  // A straight arm's line is fitted on as much of its road as stays straight (fitReach); its pairing
+  // test below still combines the placements within the window only, so a road that runs on past the
+  // window into another one's cells (two primaries sharing a band) does not break a pair.
+  // Only a road straight all the way (to its next end, or fitReach) is: one that starts to curve
+  // beyond the window keeps the window's fit, as the curve's first cells still fit some line.
+  std::vector<Vec2> longer = placements;
+  Vec2 centre, direction;
+  bool straight = true;
+  for (std::size_t c = beyond; arm.fitted && c < chain.size(); ++c) {
+    const RoadNode& n = graph.nodes[chain[c]];
+    if (chain[c] == at || !isRoad(n) || distance(n.placed, origin) > options.fitReach) break;
+    longer.push_back(n.placed);
+    fitLine(longer, centre, direction);
+    if (!consistentWithLine(longer, centre, direction, options.slack)) {
+      straight = false;
+      break;
+    }
+    if (isChainEnd(graph, chain[c])) break;
+  }
+  if (straight && longer.size() > placements.size()) {
+    arm.centre = centre;
+    arm.direction = direction;
+  }
+  if (dot(arm.direction, arm.centre - origin) < 0) arm.direction = arm.direction * -1.0;
   return arm;
 }
 

@@ -31,6 +31,15 @@ struct ThroughRoadOptions {
   /// Nodes nearer than this to the intersection (pw) are moved with their arm but not fitted: their
   /// cells belong to the crossing, whose cluster of cells bulges around the node.
   double innerRadius = 1.5;
+  /// An arm whose placements within the window are straight, and whose road stays straight up to
+  /// this far from the intersection (pw) or to its next end, has its line fitted on all of that: a
+  /// staircase at a small angle to the axes has runs about as long as the window (1 / tan θ cells,
+  /// 3.7 at 15 degrees), and a fit on one run gives the run's direction, not the road's (a 15-degree
+  /// street's arms fitted at 0 and 37 degrees are no pair). 7.5 (1.5 windows) spans two runs of a
+  /// 15-degree road on each side. Pairs are still tested on the placements within the window. The
+  /// window (5) = the fit within the window only. Measured: docs/vectorize.md, "Arms fitted beyond
+  /// the window".
+  double fitReach = 7.5;
   /// Two arms continue each other when their directions are within this many degrees of opposite.
   double pairAngle = 25.0;
   /// How far an intersection or approach node may end up from the road cells, in pw, as smoothing

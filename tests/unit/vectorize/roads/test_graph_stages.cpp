@@ -329,6 +329,39 @@ TEST(CycleRemoval, ShortCycleLosesItsShortestSegmentUntilNoneIsLeft) {
   for (const auto& f : faces) EXPECT_GT(f.size(), 15u);
 }
 
+TEST(CycleRemoval, KeepLandCyclesRemovesOnlySmallLoopsAroundRoadCells) {
+  // A grid of road cells but one unused cell (column 9, bottom row), and three square loops: A around
+  // 4 road cells (2.56 pw^2), B around road cells only but 13 pw^2, C around the unused cell.
+  auto squares = [] {
+    RoadGraph g;
+    for (const double x0 : {0.2, 4.2, 9.2}) {
+      const double side = x0 == 4.2 ? 3.6 : 1.6;
+      const int a = g.addNode({x0, 0.2}, NodeType::Secondary),
+                b = g.addNode({x0 + side, 0.2}, NodeType::Secondary);
+      const int c = g.addNode({x0 + side, 0.2 + side}, NodeType::Secondary);
+      const int d = g.addNode({x0, 0.2 + side}, NodeType::Secondary);
+      g.link(a, b), g.link(b, c), g.link(c, d), g.link(d, a);
+    }
+    return g;
+  };
+  Grid<std::uint8_t> cells(12, 4, static_cast<std::uint8_t>(LandUse::SecondaryRoad));
+  cells.at(9, 3) = static_cast<std::uint8_t>(LandUse::Unused);  // internal y = 4 - 3 - 0.5 = 0.5
+  RoadGraph g = squares();
+  ASSERT_EQ(boundedRoadFaces(g).size(), 3u);
+  CycleRemovalOptions land;
+  land.landUse = &cells;
+  land.keepLandCycles = true;
+  const CycleRemovalStats s = removeShortCycles(g, land);
+  EXPECT_EQ(s.segmentsRemoved, 1u);  // A only
+  EXPECT_EQ(boundedRoadFaces(g).size(), 2u);
+  // The documents' rule with the developed-land flag: no face encloses developed land, all three go.
+  RoadGraph d = squares();
+  CycleRemovalOptions developed;
+  developed.landUse = &cells;
+  EXPECT_EQ(removeShortCycles(d, developed).segmentsRemoved, 3u);
+  EXPECT_EQ(boundedRoadFaces(d).size(), 0u);
+}
+
 TEST(IntersectionSimplification, SharpDeadEndsAndCloseNodesGo) {
   RoadGraph g;
   const int x = g.addNode({0, 0}, NodeType::Secondary);
