@@ -116,6 +116,11 @@ app::CommandSpec spec() {
                      "corners of lot and building lines where two or more segments per layer already meet "
                      "(default: only free ends and block-layer vertices move).")
                   .isAdvanced());
+  o.push_back(option("-drop-labelled-thin", ValueType::Flag, "",
+                     "Drop every building face thinner than the sliver width (0.34 m mean width), also one "
+                     "holding a number-of-floors label on a drawing whose copies coincide (default: kept "
+                     "there as a building part).")
+                  .isAdvanced());
   o.push_back(option("-no-adjust", ValueType::Flag, "",
                      "Place each vertex at the mean of its drawn copies, without the least-squares "
                      "adjustment (straight lines, right angles, ends off along their line).")
@@ -266,6 +271,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   options.mergeSplit = args.real("-merge-split");
   options.adjust = !args.flag("-no-adjust");
   options.snapJoined = args.flag("-snap-joined");
+  options.keepLabelledThin = !args.flag("-drop-labelled-thin");
   options.straightAngle = args.real("-straight-angle");
   options.rightAngle = args.real("-right-angle");
   options.minFaceArea = args.real("-min-area");
@@ -507,6 +513,8 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   row("right_angle_constraints", n(rep.rightAngleConstraints), "adjustment: near-right angles held square");
   row("vertices_adjusted", n(rep.verticesAdjusted), "vertices moved by the adjustment (> 1 mm)");
   row("slivers_dropped", n(rep.slivers), "circuits under -min-area");
+  row("labelled_thin_faces_kept", n(rep.labelledThinKept),
+      "building faces thinner than the sliver width kept: a floor label inside, copies coinciding");
   row("faces_outside_blocks", n(rep.facesOutsideBlocks), "building circuits outside every block");
   row("buildings_outside_blocks", n(rep.buildingsOutsideBlocks),
       "of those, kept as buildings: a label gives them floors");

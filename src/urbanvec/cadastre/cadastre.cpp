@@ -106,9 +106,10 @@ CadastreResult structureCadastre(const std::vector<CadLine>& lines, const std::v
   rep.duplicateSegments = ss.duplicateSegments;
   rep.verticesOnSegments = ss.verticesOnSegments;
   rep.cornersKeptOff = ss.cornersKeptOff;
+  // The drawing's noise: the spread of the copies of a vertex across their segments (0 when they coincide).
+  const double noise = copyNoise(lw);
   // Split vertices: the copies of one drawn vertex left on several vertices merge (noisy drawings only).
   if (o.mergeSplit > 0.0) {
-    const double noise = copyNoise(lw);
     if (noise > kCleanNoise) {
       MergeStats ms;
       mergeSplitVertices(lw, o.mergeSplit * noise, o.sliverWidth, ms);
@@ -302,7 +303,14 @@ CadastreResult structureCadastre(const std::vector<CadLine>& lines, const std::v
   std::vector<Localised> outsideFaces;
   std::vector<Localised> elements;
   try {
-    ec = findCircuits(g, o.minFaceArea, o.sliverWidth);
+    // Beyond the thesis: on a drawing whose copies coincide, a thin face holding a number-of-floors
+    // label is a building part, not a sliver.
+    std::vector<Vec2> floorLabelPoints;
+    if (o.keepLabelledThin && !(noise > kCleanNoise))
+      for (const CadLabel& l : labels)
+        if (parseFloorLabel(l.text).above > 0) floorLabelPoints.push_back(l.p);
+    ec = findCircuits(g, o.minFaceArea, o.sliverWidth, floorLabelPoints);
+    rep.labelledThinKept = ec.thinKept;
     elements = localise(ec.faces, locator, o.minFaceArea, rep.facesOutsideBlocks, &outsideFaces);
   } catch (...) {
     joinParcels();

@@ -47,6 +47,8 @@ struct CadastreReport {
   std::size_t straightConstraints = 0, rightAngleConstraints = 0, verticesAdjusted = 0;
   std::size_t preBlocks = 0, blocks = 0, subBlocks = 0, courtyards = 0, parcels = 0, buildings = 0;
   std::size_t buildingsWithFloors = 0;
+  /// Building faces thinner than the sliver width kept because a floor label lies inside.
+  std::size_t labelledThinKept = 0;
   std::size_t slivers = 0, facesOutsideBlocks = 0, buildingsOutsideBlocks = 0, enclosedBlocks = 0;
   std::size_t labelsUsed = 0, labelsSnapped = 0, labelsUnmatched = 0, labelsNotNumbers = 0,
               labelSuffixesIgnored = 0, polygonsWithSeveralLabels = 0;

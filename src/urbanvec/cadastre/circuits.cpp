@@ -68,8 +68,23 @@ MultiPolygon validParts(const Polygon& polygon, double minArea) {
   return parts;
 }
 
-Circuits findCircuits(const PlanarGraph& g, double minFaceArea, double minWidth) {
+Circuits findCircuits(const PlanarGraph& g, double minFaceArea, double minWidth,
+                      const std::vector<Vec2>& keepThin) {
   Circuits c;
+  // The points that keep a thin circuit, in a grid (looked up for thin circuits only).
+  CellGrid keepGrid(8.0);
+  for (std::size_t i = 0; i < keepThin.size(); ++i) keepGrid.insert(keepThin[i], static_cast<int>(i));
+  auto holdsKeepPoint = [&](const Ring& ring) {
+    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+    for (const Vec2& p : ring)
+      x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
+    bool found = false;
+    keepGrid.query(x0, y0, x1, y1, [&](int i) {
+      const Vec2& p = keepThin[static_cast<std::size_t>(i)];
+      if (!found && p.x >= x0 && p.x <= x1 && p.y >= y0 && p.y <= y1 && pointInRing(p, ring)) found = true;
+    });
+    return found;
+  };
   int componentCount = 0;
   const std::vector<int> component = g.components(&componentCount);
   c.outlines.assign(static_cast<size_t>(componentCount), {});
@@ -89,10 +104,16 @@ Circuits findCircuits(const PlanarGraph& g, double minFaceArea, double minWidth)
     }
     if (f.twiceSignedArea <= 0.0)
       continue;  // another non-bounded walk (should not happen after fringe removal)
-    if (f.twiceSignedArea / 2.0 < minFaceArea ||
-        f.twiceSignedArea / std::max(length(ring), 1e-300) < minWidth) {
+    if (f.twiceSignedArea / 2.0 < minFaceArea) {
       ++c.slivers;
       continue;
+    }
+    if (f.twiceSignedArea / std::max(length(ring), 1e-300) < minWidth) {
+      if (keepThin.empty() || !holdsKeepPoint(ring)) {
+        ++c.slivers;
+        continue;
+      }
+      ++c.thinKept;
     }
     c.faces.push_back({std::move(ring), {}});
     c.faceComponent.push_back(comp);

@@ -20,11 +20,15 @@ struct Circuits {
   std::vector<Polygon> faces;      ///< bounded circuits, holes = outlines of the components inside
   std::vector<int> faceComponent;  ///< per face
   std::size_t slivers = 0;         ///< bounded circuits under the minimum area, dropped
+  std::size_t thinKept = 0;        ///< circuits thinner than the minimum width kept for a point inside
 };
 
 /// Circuits of `graph`; bounded circuits smaller than `minFaceArea` or thinner than `minWidth` (mean
-/// width 2 area / perimeter) are slivers, dropped and counted.
-Circuits findCircuits(const PlanarGraph& graph, double minFaceArea, double minWidth = 0.0);
+/// width 2 area / perimeter) are slivers, dropped and counted — except a circuit thinner than
+/// `minWidth` (but not smaller than `minFaceArea`) holding one of `keepThin` strictly inside (a thin
+/// face a number-of-floors label marks as a building part), kept and counted in `thinKept`.
+Circuits findCircuits(const PlanarGraph& graph, double minFaceArea, double minWidth = 0.0,
+                      const std::vector<Vec2>& keepThin = {});
 
 bool pointInRing(const Vec2& p, const Ring& ring);
 /// Inside the outer ring and outside every hole.

@@ -186,6 +186,54 @@ TEST(Circuits, RingInsideABlockIsAHole) {
   EXPECT_NEAR(area(c.faces[0]) + area(c.faces[1]), 100.0, 1e-9);
 }
 
+TEST(Circuits, ThinFaceIsASliverUnlessAKeepPointLiesInside) {
+  // A 10 x 0.2 m strip (mean width 0.196 m) and a 0.5 x 0.1 m speck (0.05 m2), side by side.
+  Linework lw;
+  lw.vertices = {{0, 0}, {10, 0}, {10, 0.2}, {0, 0.2}, {20, 0}, {20.5, 0}, {20.5, 0.1}, {20, 0.1}};
+  lw.segments = {{0, 1, 1}, {1, 2, 1}, {2, 3, 1}, {3, 0, 1}, {4, 5, 1}, {5, 6, 1}, {6, 7, 1}, {7, 4, 1}};
+  GraphStats gs;
+  const PlanarGraph g = structuredGraph(lw, kBlockLayer, 0.05, gs);
+  const Circuits dropped = findCircuits(g, 0.1, 0.34);
+  EXPECT_EQ(dropped.faces.size(), 0u);
+  EXPECT_EQ(dropped.slivers, 2u);
+  // A point inside the strip keeps it; a point inside the speck does not (under the minimum area), nor
+  // does a point outside every face.
+  const Circuits kept = findCircuits(g, 0.1, 0.34, {{5, 0.1}, {20.25, 0.05}, {5, 3}});
+  ASSERT_EQ(kept.faces.size(), 1u);
+  EXPECT_NEAR(area(kept.faces[0]), 2.0, 1e-9);
+  EXPECT_EQ(kept.thinKept, 1u);
+  EXPECT_EQ(kept.slivers, 1u);
+  const Circuits outside = findCircuits(g, 0.1, 0.34, {{5, 0.3}, {11, 0.1}});
+  EXPECT_EQ(outside.faces.size(), 0u);
+  EXPECT_EQ(outside.thinKept, 0u);
+}
+
+TEST(Pipeline, LabelledThinPartOfACleanDrawingIsKept) {
+  // A clean drawing: a block, a 10 x 10 m building and beside it a 10 x 0.25 m wall drawn as a part
+  // with II floors (mean width 0.24 m, under the 0.34 m sliver width).
+  std::vector<CadLine> lines = square(0, 0, 40, kBlockLayer);
+  append(lines, square(5, 5, 10, kBuildingLayer));
+  lines.push_back({{{5, 15}, {5, 15.25}, {15, 15.25}, {15, 15}}, kBuildingLayer});
+  const std::vector<CadLabel> labels = {{{10, 10}, "III"}, {{10, 15.12}, "II"}};
+  CadastreOptions o;
+  auto wall = [](const CadastreResult& r) {
+    int n = 0;
+    for (const BuildingOut& b : r.buildings)
+      if (b.floors == 2) {
+        ++n;
+        EXPECT_NEAR(area(b.shape), 2.5, 1e-6);
+      }
+    return n;
+  };
+  const CadastreResult kept = structureCadastre(lines, labels, o);
+  EXPECT_EQ(wall(kept), 1);
+  EXPECT_EQ(kept.report.labelledThinKept, 1u);
+  o.keepLabelledThin = false;
+  const CadastreResult dropped = structureCadastre(lines, labels, o);
+  EXPECT_EQ(wall(dropped), 0);
+  EXPECT_EQ(dropped.report.labelledThinKept, 0u);
+}
+
 TEST(PreBlocks, UndershootAndFringeAreRepaired) {
   // A square whose last side stops 0.8 m short of the corner, plus a dangling spur.
   Linework lw;
