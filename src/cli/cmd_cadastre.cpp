@@ -117,9 +117,10 @@ app::CommandSpec spec() {
                      "(default: only free ends and block-layer vertices move).")
                   .isAdvanced());
   o.push_back(option("-drop-labelled-thin", ValueType::Flag, "",
-                     "Drop every building face thinner than the sliver width (0.34 m mean width), also one "
-                     "holding a number-of-floors label on a drawing whose copies coincide (default: kept "
-                     "there as a building part).")
+                     "Drop every building face thinner than the sliver width (" +
+                         app::numberText(d.sliverWidth) +
+                         " m mean width), also one holding a number-of-floors label on a drawing whose "
+                         "copies coincide (default: kept there as a building part).")
                   .isAdvanced());
   o.push_back(option("-no-adjust", ValueType::Flag, "",
                      "Place each vertex at the mean of its drawn copies, without the least-squares "

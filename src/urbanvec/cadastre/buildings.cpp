@@ -9,25 +9,13 @@
 #include "urbanvec/cadastre/linework.hpp"
 
 namespace urbanvec::cadastre {
-namespace {
-
-struct Box {
-  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-  void add(const Vec2& p) {
-    x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
-  }
-};
-
-}  // namespace
-
 BlockLocator::BlockLocator(std::vector<Polygon> areas, std::vector<int> owners)
     : areas_(std::move(areas)), owners_(std::move(owners)) {
   double total = 0;
   for (const Polygon& p : areas_) total += std::abs(signedArea(p.outer));
   if (!areas_.empty()) cell_ = std::max(1.0, std::sqrt(total / static_cast<double>(areas_.size())));
   for (size_t i = 0; i < areas_.size(); ++i) {
-    Box b;
-    for (const Vec2& p : areas_[i].outer) b.add(p);
+    const Box b = boxOf(areas_[i].outer);
     for (auto x = static_cast<std::int64_t>(std::floor(b.x0 / cell_));
          x <= static_cast<std::int64_t>(std::floor(b.x1 / cell_)); ++x)
       for (auto y = static_cast<std::int64_t>(std::floor(b.y0 / cell_));
@@ -77,7 +65,7 @@ std::vector<int> assignLabels(const std::vector<Localised>& polys, const std::ve
     Box b;
     for (const Polygon& p : polys[i].shape)
       for (const Vec2& q : p.outer) b.add(q);
-    grid.insertBox(b.x0, b.y0, b.x1, b.y1, static_cast<int>(i));
+    grid.insertBox(b, static_cast<int>(i));
   }
   std::vector<std::vector<int>> held(polys.size());
   for (size_t l = 0; l < labels.size(); ++l) {

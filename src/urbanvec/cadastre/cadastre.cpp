@@ -167,10 +167,7 @@ CadastreResult structureCadastre(const std::vector<CadLine>& lines, const std::v
     if (!candidates.empty()) {
       CellGrid grid(8.0);
       for (int k : candidates) {
-        double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-        for (const Vec2& p : bc.outlines[static_cast<size_t>(k)])
-          x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
-        grid.insertBox(x0, y0, x1, y1, k);
+        grid.insertBox(boxOf(bc.outlines[static_cast<size_t>(k)]), k);
       }
       for (const Segment& sg : lw.segments) {
         if (!(sg.layers & (kLotLayer | kBuildingLayer)) || (sg.layers & kBlockLayer)) continue;

@@ -75,13 +75,11 @@ Circuits findCircuits(const PlanarGraph& g, double minFaceArea, double minWidth,
   CellGrid keepGrid(8.0);
   for (std::size_t i = 0; i < keepThin.size(); ++i) keepGrid.insert(keepThin[i], static_cast<int>(i));
   auto holdsKeepPoint = [&](const Ring& ring) {
-    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-    for (const Vec2& p : ring)
-      x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
+    const Box b = boxOf(ring);
     bool found = false;
-    keepGrid.query(x0, y0, x1, y1, [&](int i) {
+    keepGrid.query(b.x0, b.y0, b.x1, b.y1, [&](int i) {
       const Vec2& p = keepThin[static_cast<std::size_t>(i)];
-      if (!found && p.x >= x0 && p.x <= x1 && p.y >= y0 && p.y <= y1 && pointInRing(p, ring)) found = true;
+      if (!found && b.contains(p) && pointInRing(p, ring)) found = true;
     });
     return found;
   };
@@ -128,10 +126,7 @@ Circuits findCircuits(const PlanarGraph& g, double minFaceArea, double minWidth,
   CellGrid grid(cell);
   std::vector<double> faceArea(c.faces.size());
   for (size_t i = 0; i < c.faces.size(); ++i) {
-    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-    for (const Vec2& p : c.faces[i].outer)
-      x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
-    grid.insertBox(x0, y0, x1, y1, static_cast<int>(i));
+    grid.insertBox(boxOf(c.faces[i].outer), static_cast<int>(i));
     faceArea[i] = std::abs(signedArea(c.faces[i].outer));
   }
   for (size_t k = 0; k < c.outlines.size(); ++k) {

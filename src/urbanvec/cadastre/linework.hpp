@@ -148,6 +148,20 @@ struct CoordinateHash {
   }
 };
 
+/// Axis-aligned bounding box of points (empty: inverted infinite bounds, so nothing lies inside).
+struct Box {
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  void add(const Vec2& p) {
+    x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
+  }
+  bool contains(const Vec2& p) const { return p.x >= x0 && p.x <= x1 && p.y >= y0 && p.y <= y1; }
+};
+inline Box boxOf(const std::vector<Vec2>& points) {
+  Box b;
+  for (const Vec2& p : points) b.add(p);
+  return b;
+}
+
 /// A uniform grid of ids by cell, for proximity queries (collapsing, snapping, clustering). Each cell's
 /// ids are a list in insertion order, threaded through one pooled array (no allocation per cell).
 class CellGrid {
@@ -175,6 +189,7 @@ class CellGrid {
     for (std::int64_t i = cx(x0); i <= cx(x1); ++i)
       for (std::int64_t j = cx(y0); j <= cx(y1); ++j) push(key(i, j), id);
   }
+  void insertBox(const Box& b, int id) { insertBox(b.x0, b.y0, b.x1, b.y1, id); }
   /// Calls f(ids) for every non-empty cell, in an order fixed by the cells' contents.
   template <class F>
   void forEachCell(F&& f) const {
