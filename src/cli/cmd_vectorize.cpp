@@ -166,14 +166,15 @@ app::CommandSpec spec() {
                   .atLeast(0)
                   .atMost(90)
                   .isAdvanced());
-  o.push_back(
-      option("-through-fit-reach", ValueType::Real, "<cells>",
-             "An intersection's straight arms are fitted on their road up to this far from it, while "
-             "the road stays straight (B7; 5, the approach window, or less = fitted within the window).")
-          .byDefault(app::numberText(d.throughRoads.fitReach))
-          .withUnit("cells")
-          .atLeast(0)
-          .isAdvanced());
+  o.push_back(option("-through-fit-reach", ValueType::Real, "<cells>",
+                     "An intersection's straight arms are fitted on their road up to this far from it, while "
+                     "the road stays straight (B7; " +
+                         app::numberText(d.throughRoads.window) +
+                         ", the approach window, or less = fitted within the window).")
+                  .byDefault(app::numberText(d.throughRoads.fitReach))
+                  .withUnit("cells")
+                  .atLeast(0)
+                  .isAdvanced());
   o.push_back(option("-straight-slack", ValueType::Real, "<cells>",
                      "A road is straight when its cells lie within the band of a digital straight line "
                      "plus this (B7).")
@@ -291,6 +292,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   options.cycles.maxCycleNodes = static_cast<int>(args.integer("-cycle-nodes"));
   options.intersections.deadEndAngle = args.real("-dead-end-angle");
   options.cleanIntersectionPatches = !args.flag("-no-patch-cleaning");
+  std::string removalsChosenBy;  // the option that chose the road removals; empty: the grid's metadata
   {
     const std::string mode = args.str("-road-removals");
     const bool alias = args.flag("-keep-all-roads");
@@ -305,8 +307,13 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
           throw invalidOption(std::string(alias ? "-keep-all-roads" : "-road-removals none") +
                               " switches the road removals off; do not give " + removal + " with it");
       options.roadRemovals = vectorize::RoadRemovals::None;
+      removalsChosenBy = alias ? "-keep-all-roads" : "-road-removals none";
     } else if (mode == "paper" || tuned) {
       options.roadRemovals = vectorize::RoadRemovals::Paper;
+      removalsChosenBy = mode == "paper"                 ? std::string("-road-removals paper")
+                         : args.given("-cycle-nodes")    ? std::string("-cycle-nodes given")
+                         : args.given("-dead-end-angle") ? std::string("-dead-end-angle given")
+                                                         : std::string("-no-patch-cleaning given");
     } else {
       options.roadRemovals = vectorize::RoadRemovals::Auto;
     }
@@ -401,6 +408,16 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   std::vector<std::string> warnings;
   const vectorize::VectorizeInput input = app::loadGridInput(paths, &warnings);
   for (const std::string& w : warnings) ctx.warn(w);
+  // Auto decides from metadata that some GDAL tools keep and others drop (docs/vectorize.md, "Choosing
+  // the removals from the grid"), so the user sees which mode ran and why.
+  if (!ctx.quiet && ctx.out) {
+    const bool keepAll = vectorize::keepsAllRoads(options.roadRemovals, input);
+    *ctx.out << "road removals: " << (keepAll ? "none" : "paper") << " ("
+             << (!removalsChosenBy.empty() ? removalsChosenBy
+                                           : landUse + (input.roadsFromMappedStreets ? " has " : " has no ") +
+                                                 app::kRoadSourceKey + "=" + app::kMappedStreets)
+             << ")\n";
+  }
 
   vectorize::VectorizeResult result = vectorize::vectorize(input, options, ctx.progress);
   for (const std::string& w : result.warnings) ctx.warn(w);

@@ -68,17 +68,21 @@ if [ -f "$g/truth.gpkg" ]; then
   gdalinfo "$g/landuse.tif" | grep -q "URBANVEC_ROAD_SOURCE=mapped_streets" ||
     fail "sample grid $g lacks gridify's URBANVEC_ROAD_SOURCE=mapped_streets metadata"
   roads_md5() { ogrinfo -ro -q -al "$1" roads | md5sum; }
-  run_cmd vectorize -q -check -timings -roads-only "$g/landuse.tif" "$WORK/auto.gpkg"
+  run_cmd vectorize -check -timings -roads-only "$g/landuse.tif" "$WORK/auto.gpkg"
   expect_status 0
+  expect_stdout_contains "road removals: none ($g/landuse.tif has URBANVEC_ROAD_SOURCE=mapped_streets)"
   expect_stdout_contains "road cells farther than 1.5 cells from a road: 0 of "
   expect_stdout_contains " 0 extraneous or 2x2 patches (A3, A4.3), "
   expect_stdout_contains " 0 dead ends (B5))"
   expect_stdout_contains "skipped (road removals: none, every secondary patch kept)"
   expect_stdout_contains " faces around land kept"
-  run_cmd vectorize -q -roads-only -keep-all-roads "$g/landuse.tif" "$WORK/keep.gpkg"
+  # Without -q the run says which removals it used and why.
+  run_cmd vectorize -roads-only -keep-all-roads "$g/landuse.tif" "$WORK/keep.gpkg"
   expect_status 0
-  run_cmd vectorize -q -roads-only -road-removals none "$g/landuse.tif" "$WORK/none.gpkg"
+  expect_stdout_contains "road removals: none (-keep-all-roads)"
+  run_cmd vectorize -roads-only -road-removals none "$g/landuse.tif" "$WORK/none.gpkg"
   expect_status 0
+  expect_stdout_contains "road removals: none (-road-removals none)"
   expect_eq "$(roads_md5 "$WORK/keep.gpkg")" "$(roads_md5 "$WORK/auto.gpkg")" "-keep-all-roads vs auto on a gridify grid"
   expect_eq "$(roads_md5 "$WORK/none.gpkg")" "$(roads_md5 "$WORK/auto.gpkg")" "-road-removals none vs auto on a gridify grid"
   run_cmd evaluate -q -json "$WORK/auto.json" "$WORK/auto.gpkg" "$g/truth.gpkg"
@@ -96,9 +100,10 @@ PY
   cp "$g/landuse.tif" "$WORK/sim.tif"
   /usr/bin/python3 -c "import sys; from osgeo import gdal; d = gdal.Open(sys.argv[1], gdal.GA_Update); d.SetMetadata({}); d = None" "$WORK/sim.tif"
   if gdalinfo "$WORK/sim.tif" | grep -q URBANVEC_ROAD_SOURCE; then fail "could not clear the metadata of sim.tif"; fi
-  run_cmd vectorize -q -timings -roads-only "$WORK/sim.tif" "$WORK/sim.gpkg"
+  run_cmd vectorize -timings -roads-only "$WORK/sim.tif" "$WORK/sim.gpkg"
   expect_status 0
   expect_stdout_contains " patches removed"
+  expect_stdout_contains "road removals: paper ($WORK/sim.tif has no URBANVEC_ROAD_SOURCE=mapped_streets)"
   run_cmd vectorize -q -roads-only -road-removals paper "$g/landuse.tif" "$WORK/paper.gpkg"
   expect_status 0
   expect_eq "$(roads_md5 "$WORK/sim.gpkg")" "$(roads_md5 "$WORK/paper.gpkg")" "auto on a grid without metadata vs paper"
@@ -108,8 +113,9 @@ PY
   awk -v p="$(jq -r .roads.distance_truth_to_result.p95_cells "$WORK/paper.json")" 'BEGIN { exit !(p > 1.0) }' ||
     fail "paper: Monaco's p95 truth->result is expected above 1 cell (the roads the documents remove)"
   # A removal threshold given with auto selects paper.
-  run_cmd vectorize -q -roads-only -cycle-nodes 15 "$g/landuse.tif" "$WORK/tuned.gpkg"
+  run_cmd vectorize -roads-only -cycle-nodes 15 "$g/landuse.tif" "$WORK/tuned.gpkg"
   expect_status 0
+  expect_stdout_contains "road removals: paper (-cycle-nodes given)"
   expect_eq "$(roads_md5 "$WORK/tuned.gpkg")" "$(roads_md5 "$WORK/paper.gpkg")" "auto with -cycle-nodes 15 vs paper"
 fi
 
