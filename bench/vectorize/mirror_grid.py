@@ -12,6 +12,11 @@ with the land use of its source parcel and, as gridify writes them, cells = its 
 population = the sum of density over its cells (so a parcel cut by the mosaic's edge keeps a
 consistent row). Deterministic: same source and size, same bytes.
 
+The mosaic carries no metadata, gridify's URBANVEC_ROAD_SOURCE=mapped_streets included, so
+`vectorize -road-removals auto` runs the documents' removals on it (paper), as every benchmark
+figure before issue 20 did and as a simulator's grid would; time the mapped-streets mode with
+`-road-removals none`. (Its mirrored edges are not mapped streets either.)
+
 Usage: mirror_grid.py <source_dir> <size> <out_dir>
 """
 import csv
