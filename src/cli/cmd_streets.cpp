@@ -190,6 +190,12 @@ app::CommandSpec spec() {
         "Chance that an end of a minor road joining streets at both ends (T-junctions) stops d_test short "
         "instead, leaving a dead end (a cul-de-sac); one end per road at most, drawn from -seed; 0 = off.",
         d.trace.stopShortShare);
+  o.push_back(option("-major-clearance-ratio", ValueType::Real, "<ratio>",
+                     "A minor-road seed keeps this x d_sep_minor from the major roads of its family (the "
+                     "full d_sep from minor ones): the major roads bound the regions minor roads fill (§12).")
+                  .byDefault(app::numberText(d.trace.majorClearanceRatio))
+                  .atLeast(0)
+                  .atMost(1));
   o.push_back(option("-bow", ValueType::Real, "<ratio>",
                      "Curved streets: each traced street between two nodes bows sideways by a half sine of "
                      "up to this share of its chord (at most a quarter of the minor d_sep; drawn per street "
@@ -350,6 +356,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   options.bow.seed = options.field.seed;
   options.bow.ratio = args.real("-bow");
   options.trace.stopShortShare = args.real("-stop-short-share");
+  options.trace.majorClearanceRatio = args.real("-major-clearance-ratio");
   options.noise.fullShare = args.real("-delete-share");
   options.noise.partialShare = args.real("-cut-share");
   options.noise.bendShare = args.real("-bend-share");

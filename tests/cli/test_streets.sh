@@ -150,6 +150,16 @@ run_cmd streets -q -boundary "$WORK/boundary.gpkg" -roads "$WORK/grid_roads.gpkg
 expect_status 0
 spaced=$(feature_count "$WORK/spaced.gpkg" streets) fixed=$(feature_count "$WORK/fixed.gpkg" streets)
 [ "${spaced:-0}" -gt $((3 * ${fixed:-0} / 2)) ] || fail "-roads every 250 m give $spaced streets, the fixed 360 m $fixed"
+# -major-clearance-ratio reaches the tracer: at d_sep_minor = d_sep_major / 2, keeping d_test from the
+# major roads fills the regions between them with minor roads (far more streets than the default 1).
+printf '{"elements": [{"kind": "grid", "x": 451000, "y": 5551000, "angle": 20}]}\n' >"$WORK/grid_design.json"
+run_cmd streets -q -boundary "$WORK/boundary.gpkg" -design "$WORK/grid_design.json" -dsep-major 200 "$WORK/clear1.gpkg"
+expect_status 0
+run_cmd streets -q -boundary "$WORK/boundary.gpkg" -design "$WORK/grid_design.json" -dsep-major 200 \
+  -major-clearance-ratio 0.5 "$WORK/clear05.gpkg"
+expect_status 0
+clear1=$(feature_count "$WORK/clear1.gpkg" streets) clear05=$(feature_count "$WORK/clear05.gpkg" streets)
+[ "${clear05:-0}" -gt $((4 * ${clear1:-0} / 3)) ] || fail "-major-clearance-ratio 0.5 gives $clear05 streets, 1 gives $clear1"
 
 # Bad input: one ERROR line, exit status, nothing written.
 bad() {  # bad <status> <expected stderr substring> <args...>

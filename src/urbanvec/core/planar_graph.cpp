@@ -313,24 +313,34 @@ std::vector<std::vector<int>> PlanarGraph::chains(const std::function<bool(int)>
   return out;
 }
 
-std::vector<int> PlanarGraph::chainNodes(const std::vector<int>& chain) const {
+std::vector<int> PlanarGraph::chainNodes(const std::vector<int>& chain,
+                                         const std::function<bool(int)>& keepNode) const {
   std::vector<int> out;
   if (chain.empty()) return out;
   const Edge& e0 = edge(chain[0]);
   int n = e0.a;
   if (chain.size() > 1) {
     const Edge& e1 = edge(chain[1]);
-    n = (e0.b == e1.a || e0.b == e1.b) ? e0.a : e0.b;
+    const bool bShared = e0.b == e1.a || e0.b == e1.b, aShared = e0.a == e1.a || e0.a == e1.b;
+    if (bShared && aShared) {
+      // Two edges between the same two nodes: the chain runs from the node it cannot pass through
+      // (chains()' rule); when it can pass both, it is a closed ring walked from e0.a.
+      auto passes = [&](int v) { return degree(v) == 2 && !(keepNode && keepNode(v)); };
+      n = passes(e0.a) && !passes(e0.b) ? e0.b : e0.a;
+    } else {
+      n = bShared ? e0.a : e0.b;
+    }
   }
   out.push_back(n);
   for (int e : chain) out.push_back(n = otherEnd(e, n));
   return out;
 }
 
-LineString PlanarGraph::chainLine(const std::vector<int>& chain) const {
+LineString PlanarGraph::chainLine(const std::vector<int>& chain,
+                                  const std::function<bool(int)>& keepNode) const {
   LineString out;
   if (chain.empty()) return out;
-  int n = chainNodes(chain).front();
+  int n = chainNodes(chain, keepNode).front();
   for (int e : chain) {
     const LineString& line = edge(e).line;
     const bool forward = edge(e).a == n;

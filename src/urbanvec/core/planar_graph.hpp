@@ -96,10 +96,14 @@ class PlanarGraph {
   /// marks nodes a chain must end at, e.g. a change of road class). A cycle of degree-2 nodes is one
   /// chain starting at its lowest edge. Chains come in order of their lowest edge id.
   std::vector<std::vector<int>> chains(const std::function<bool(int)>& keepNode = {}) const;
-  /// The nodes along a chain (one more than its edges), from its first edge's free end.
-  std::vector<int> chainNodes(const std::vector<int>& chain) const;
-  /// The polyline of a chain, from its first edge's free end.
-  LineString chainLine(const std::vector<int>& chain) const;
+  /// The nodes along a chain (one more than its edges), from its first edge's free end. A chain of two
+  /// edges between the same two nodes (a ring off one node) starts at the node the chain ends at (degree
+  /// other than 2, or in `keepNode`: pass the same `keepNode` as to chains()); a ring of degree-2 nodes
+  /// starts at its first edge's first node, as chains() walks it.
+  std::vector<int> chainNodes(const std::vector<int>& chain,
+                              const std::function<bool(int)>& keepNode = {}) const;
+  /// The polyline of a chain, from the first of its chainNodes() (same `keepNode`).
+  LineString chainLine(const std::vector<int>& chain, const std::function<bool(int)>& keepNode = {}) const;
 
   /// Nodes a line soup: lines are cut where they cross or touch (GEOS), coordinates are snapped to a
   /// grid of `tolerance` (0 = exact noding), and pieces meeting at a point share a node. Pieces

@@ -249,9 +249,9 @@ StreetNetwork generateStreets(const StreetsInput& input, const StreetsOptions& o
   std::vector<char> endNode(streets.nodeCount(), 0);
   for (const std::vector<int>& chain : streets.chains(levelChange)) {
     StreetEdge edge;
-    edge.line = streets.chainLine(chain);
+    edge.line = streets.chainLine(chain, levelChange);
     edge.level = streetLevel[static_cast<std::size_t>(chain.front())];
-    const std::vector<int> ends = streets.chainNodes(chain);
+    const std::vector<int> ends = streets.chainNodes(chain, levelChange);
     endNode[static_cast<std::size_t>(ends.front())] = endNode[static_cast<std::size_t>(ends.back())] = 1;
     net.streets.push_back(std::move(edge));
   }

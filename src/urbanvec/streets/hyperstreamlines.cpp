@@ -170,9 +170,11 @@ class Tracer {
     return std::min(land_.firstCrossing(p, q), water_.firstCrossing(p, q));
   }
 
-  bool tooClose(StreetLevel l, int family, const Vec2& p, double r) const {
+  /// Closer than r to a street of the level and family; a minor road also checks the major roads of its
+  /// family, within rMajor (default r).
+  bool tooClose(StreetLevel l, int family, const Vec2& p, double r, double rMajor = -1.0) const {
     if (points_[static_cast<int>(l)][family].anyWithin(p, r)) return true;
-    return l == StreetLevel::Minor && points_[0][family].anyWithin(p, r);
+    return l == StreetLevel::Minor && points_[0][family].anyWithin(p, rMajor < 0.0 ? r : rMajor);
   }
 
   /// §8.3 look-ahead: keep integrating (ignoring criteria 4 and 5) for d_lookahead; keep the part up
@@ -268,7 +270,8 @@ class Tracer {
   }
 
   bool validSeed(const Vec2& s, StreetLevel l, int family) const {
-    if (!onLand(s) || tooClose(l, family, s, dsep(l, s) * (1.0 - 1e-6))) return false;
+    const double d = dsep(l, s) * (1.0 - 1e-6);
+    if (!onLand(s) || tooClose(l, family, s, d, o_.majorClearanceRatio * d)) return false;
     const double margin = o_.edgeSeedRatio * h_;
     return !(margin > 0.0) || ((land_.empty() || land_.distanceToEdge(s, margin) >= margin) &&
                                water_.distanceToEdge(s, margin) >= margin);

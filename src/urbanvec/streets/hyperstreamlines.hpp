@@ -60,6 +60,16 @@ struct TraceOptions {
   /// 0.206 over bench/streets/compare.sh's generated areas, seeds 1-8, where 0.25 and 0.35 lower
   /// the 3-way share more than they add (docs/streets.md); 0 = off].
   double stopShortShare = 0.15;
+  /// A minor-road seed keeps ratio × d_sep_minor from the major roads of its family (it keeps the full
+  /// d_sep from the minor ones). The major roads bound the regions minor roads are traced in (§12), and
+  /// at the default d_sep_minor = d_sep_major / 2 the one minor road a region between two parallel
+  /// major roads can hold lies exactly d_sep_minor from both: with the full d_sep (1) the field's noise
+  /// leaves most such regions empty, so a grid design's nodes are mostly major crossings (4-way share
+  /// 0.46-0.54 on bench/streets/speed.sh's cities, over Boeing's 0.42). d_test (0.5), the distance a
+  /// traced street stops at, fills them (4-way 0.32) but makes the sample cities' kept networks 1.3-2.3 ×
+  /// as dense as before (kept matches 17.9 -> 13.3 of 28, seeds 1-8); so the default stays 1
+  /// [INFERENCE: the spec traces each region on its own; docs/streets.md].
+  double majorClearanceRatio = 1.0;
   /// Seed of the per-end draws (the run seed).
   std::uint64_t seed = 1;
   /// Trace minor roads (the second level).

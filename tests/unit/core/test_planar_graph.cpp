@@ -185,6 +185,44 @@ TEST(PlanarGraph, ARingOfDegreeTwoNodesIsOneClosedChain) {
   EXPECT_DOUBLE_EQ(length(line), 4.0);
 }
 
+TEST(PlanarGraph, ATwoEdgeRingChainStartsAtTheNodeItHangsFrom) {
+  // A ring of two edges between node 1 (a junction: the ring and a stem to node 2) and node 0 (its tip,
+  // degree 2). Both ring edges run 0 -> 1, so the first edge's free end is ambiguous.
+  PlanarGraph g;
+  g.addNode({1, 0});
+  g.addNode({0, 0});
+  g.addNode({-1, 0});
+  g.addEdge(0, 1, {{1, 0}, {0.5, 1}, {0, 0}});
+  g.addEdge(0, 1, {{1, 0}, {0.5, -1}, {0, 0}});
+  g.addEdge(1, 2);
+  g.sortRotations();
+  std::vector<int> ring;
+  for (const std::vector<int>& chain : g.chains())
+    if (chain.size() == 2) ring = chain;
+  ASSERT_EQ(ring.size(), 2u);
+  EXPECT_EQ(g.chainNodes(ring), (std::vector<int>{1, 0, 1}));
+  const LineString line = g.chainLine(ring);
+  EXPECT_EQ(line.front(), Vec2(0, 0));
+  EXPECT_EQ(line.back(), Vec2(0, 0));
+  EXPECT_EQ(line.size(), 5u);
+
+  // Without the stem both nodes have degree 2: a node the caller keeps is where the ring starts...
+  PlanarGraph loop;
+  loop.addNode({1, 0});
+  loop.addNode({0, 0});
+  loop.addEdge(0, 1, {{1, 0}, {0.5, 1}, {0, 0}});
+  loop.addEdge(0, 1, {{1, 0}, {0.5, -1}, {0, 0}});
+  loop.sortRotations();
+  const auto keepOne = [](int n) { return n == 1; };
+  const std::vector<std::vector<int>> kept = loop.chains(keepOne);
+  ASSERT_EQ(kept.size(), 1u);
+  EXPECT_EQ(loop.chainNodes(kept[0], keepOne), (std::vector<int>{1, 0, 1}));
+  // ...and a closed ring of degree-2 nodes starts at its first edge's first node.
+  const std::vector<std::vector<int>> closed = loop.chains();
+  ASSERT_EQ(closed.size(), 1u);
+  EXPECT_EQ(loop.chainNodes(closed[0]), (std::vector<int>{0, 1, 0}));
+}
+
 TEST(PlanarGraph, FromLinesNodesCrossingsAndSnapsNearEnds) {
   const PlanarGraph cross = PlanarGraph::fromLines({{{0, 0}, {2, 2}}, {{0, 2}, {2, 0}}});
   EXPECT_EQ(cross.nodeCount(), 5u);

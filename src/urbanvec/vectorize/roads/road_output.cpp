@@ -87,9 +87,10 @@ RoadNetwork buildRoadNetwork(const RoadGraph& g, double simplifyTolerance) {
     std::vector<int> nodes;
   };
   std::vector<Walk> walks;
-  for (const std::vector<int>& chain : planar.chains([&](int i) { return outId[i] >= 0; })) {
+  const auto kept = [&](int i) { return outId[i] >= 0; };
+  for (const std::vector<int>& chain : planar.chains(kept)) {
     Walk w;
-    w.nodes = planar.chainNodes(chain);
+    w.nodes = planar.chainNodes(chain, kept);
     const int first = w.nodes.front(), last = w.nodes.back();
     w.ring = outId[first] < 0;
     if (w.ring) {
