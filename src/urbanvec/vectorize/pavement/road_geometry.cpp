@@ -389,18 +389,7 @@ geos::GeomPtr frameAnchoredUnion(const geos::Context& context, const GeosWorkers
     });
     uniteRuns();
   }
-  // The floating merges leave crossings off the grid: round the union's polygons to it, each on a
-  // worker, snap-rounding only a polygon that rounding made invalid.
-  const MultiPolygon united = context.toPolygons(items.front().geom.get());
-  std::vector<MultiPolygon> rounded(united.size());
-  workers.run(united.size(), [&](size_t k, size_t, const geos::Context& c) {
-    const geos::GeomPtr polygon = c.polygon(united[k]);
-    rounded[k] = c.toPolygons(snapToGrid(c, polygon.get(), grid).get());
-  });
-  MultiPolygon all;
-  for (MultiPolygon& r : rounded)
-    for (Polygon& p : r) all.push_back(std::move(p));
-  return context.multiPolygon(all);
+  return snapToGrid(context, items.front().geom.get(), grid);
 }
 
 std::array<double, 5> envelopeKey(const geos::Context& context, const GEOSGeometry* g) {
