@@ -363,7 +363,7 @@ geos::GeomPtr frameAnchoredUnion(const geos::Context& context, const GeosWorkers
   });
   // OverlayNG keeps the lines of edges that snap rounding collapsed; the union of areas is the polygons.
   auto unite = [grid](const geos::Context& c, geos::GeomPtr& into, geos::GeomPtr add) {
-    into = floatingOverlay(c, OverlayOp::Union, into.get(), add.get(), grid);
+    into = c.own(GEOSUnionPrec_r(c.handle(), into.get(), add.get(), grid), "union");
     if (GEOSGeomTypeId_r(c.handle(), into.get()) == GEOS_GEOMETRYCOLLECTION)
       into = c.multiPolygon(c.toPolygons(into.get()));
   };
@@ -389,7 +389,7 @@ geos::GeomPtr frameAnchoredUnion(const geos::Context& context, const GeosWorkers
     });
     uniteRuns();
   }
-  return snapToGrid(context, items.front().geom.get(), grid);
+  return std::move(items.front().geom);
 }
 
 std::array<double, 5> envelopeKey(const geos::Context& context, const GEOSGeometry* g) {

@@ -152,9 +152,7 @@ geos::GeomPtr floatingOverlay(const geos::Context& context, OverlayOp op, const 
 /// `squareSize` cells (anchored at the frame's origin) that holds the lower-left corner of its
 /// envelope; a square's parts are unioned one after another in the order of their envelopes; then
 /// neighbouring squares are merged pairwise, along x, then along y, level by level, by one fixed binary
-/// tree over the frame. The merges of a level are independent and run on `workers`. Each merge is a
-/// floating overlay (floatingOverlay: no snap rounding per merge); the final union's vertices are
-/// rounded to the grid, and snap-rounded on it only where rounding leaves the union invalid.
+/// tree over the frame. The merges of a level are independent and run on `workers`.
 geos::GeomPtr frameAnchoredUnion(const geos::Context& context, const GeosWorkers& workers,
                                  std::vector<geos::GeomPtr> parts, double grid, double squareSize);
 /// Polygonal area of a geometry (0 for empty or non-polygonal).
