@@ -141,7 +141,9 @@ enum class OverlayOp { Union, Difference };
 /// Union of all parts by GEOS's floating overlay (OverlayNG with floating noding, which retries with
 /// snapping noders on its own), without snap rounding; snap-rounded on `grid` only when GEOS fails.
 geos::GeomPtr floatingUnion(const geos::Context& context, std::vector<geos::GeomPtr> parts, double grid);
-/// a ∪ b or a − b by the floating overlay, snap-rounded on `grid` only when GEOS fails.
+/// a ∪ b or a − b by the floating overlay, snap-rounded on `grid` only when GEOS fails. The water
+/// stages use these; C's overlap resolution and D1's union stay snap-rounded, whose floating versions
+/// broke the tiled = single equality and left invalid polygons (docs/performance.md, issue 21 round 4).
 geos::GeomPtr floatingOverlay(const geos::Context& context, OverlayOp op, const GEOSGeometry* a,
                               const GEOSGeometry* b, double grid);
 /// Union of the polygonal `parts` on the precision grid whose vertices near a point depend only on

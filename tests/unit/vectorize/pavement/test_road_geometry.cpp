@@ -147,7 +147,7 @@ TEST(RoadGeometry, SharpTurnsAndNearParallelPairsNeverOverlap) {
 }
 
 TEST(RoadGeometry, FloatingOverlaysKeepCrossingsOffThePrecisionGrid) {
-  // D1 and the water stages overlay in floating point: a crossing of two edges stays where it is, even
+  // The water stages overlay in floating point: a crossing of two edges stays where it is, even
   // on a grid so coarse that snap rounding would move it to a whole number.
   geos::Context ctx;
   const geos::GeomPtr square = ctx.polygon(box(0, 0, 3, 3));
