@@ -3,8 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 
+#include "urbanvec/core/cell_regions.hpp"
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/core/geos.hpp"
 #include "urbanvec/vectorize/blocks/block_outline.hpp"
@@ -191,16 +193,20 @@ void addIslandBlocks(const geos::Context& ctx, const SimulatedCity& city, const 
         island = undeveloped(c, r);
       }
     if (!island) continue;
-    std::vector<geos::GeomPtr> squares;
+    // The block's cells traced along their edges (core/cell_regions) on a mask over its bounding box,
+    // framed so that its cells keep the whole raster's coordinates (Grid::frameDx/frameDy, issue 22).
+    int c0 = block.cells.front().col, c1 = c0, r0 = block.cells.front().row, r1 = r0;
     for (const GridCell& cell : block.cells) {
-      // A window keeps the whole raster's frame (Grid::frameDx/frameDy, issue 22).
-      const double x0 = grid.frameDx + cell.col, y0 = grid.frameDy + h - cell.row - 1.0;
-      squares.push_back(
-          ctx.polygon({{{x0, y0}, {x0 + 1, y0}, {x0 + 1, y0 + 1}, {x0, y0 + 1}, {x0, y0}}, {}}));
+      c0 = std::min(c0, cell.col), c1 = std::max(c1, cell.col);
+      r0 = std::min(r0, cell.row), r1 = std::max(r1, cell.row);
     }
-    geos::GeomPtr cells = unionOnGrid(ctx, std::move(squares), options.precisionGrid);
-    if (covered(cells.get())) continue;
-    for (const Polygon& part : ctx.toPolygons(cells.get())) {
+    Grid<std::uint8_t> mask(c1 - c0 + 1, r1 - r0 + 1, 0);
+    mask.frameDx = grid.frameDx + c0;
+    mask.frameDy = grid.frameDy + h - r0 - mask.height;
+    for (const GridCell& cell : block.cells) mask.at(cell.col - c0, cell.row - r0) = 1;
+    const MultiPolygon regions = cellRegions(mask);
+    if (covered(ctx.multiPolygon(regions).get())) continue;
+    for (const Polygon& part : regions) {
       auto smoothed = [&](const Ring& ring) {
         return options.boundarySmoothingPasses > 0
                    ? smoothClosedRing(ring, options.boundarySmoothingPasses, options.boundaryResampleSpacing)

@@ -162,7 +162,7 @@ MultiPolygon waterPolygons(const Grid<LandUse>& landUse, const WaterSplitOptions
       g = ctx.own(GEOSMakeValid_r(ctx.handle(), g.get()), "make valid");
     smoothed.push_back(std::move(g));
   }
-  geos::GeomPtr water = unionOnGrid(ctx, std::move(smoothed), options.precisionGrid);
+  geos::GeomPtr water = floatingUnion(ctx, std::move(smoothed), options.precisionGrid);
   MultiPolygon out = ctx.toPolygons(water.get());
   for (Polygon& p : out) orientClockwise(p);
   reportProgress(progress, 1.0, "water");
@@ -217,9 +217,8 @@ WaterSplit splitBlocksByWater(const std::vector<Polygon>& blocks, const std::vec
         std::vector<geos::GeomPtr> hits;
         for (int w : hitsOf[b])
           hits.push_back(c.own(GEOSGeom_clone_r(c.handle(), waterGeoms[w].get()), "clone"));
-        geos::GeomPtr cut = unionOnGrid(c, std::move(hits), grid);
-        geos::GeomPtr rest =
-            c.own(GEOSDifferencePrec_r(c.handle(), blockGeoms[b].get(), cut.get(), grid), "difference");
+        geos::GeomPtr cut = floatingUnion(c, std::move(hits), grid);
+        geos::GeomPtr rest = floatingOverlay(c, OverlayOp::Difference, blockGeoms[b].get(), cut.get(), grid);
         for (Polygon& piece : c.toPolygons(rest.get())) {
           if (!(area(piece) >= grid)) continue;  // precision crumbs
           orientClockwise(piece);

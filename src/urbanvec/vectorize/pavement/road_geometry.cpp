@@ -319,6 +319,22 @@ geos::GeomPtr unionOnGrid(const geos::Context& context, std::vector<geos::GeomPt
   return context.own(GEOSUnaryUnionPrec_r(context.handle(), all.get(), grid), "unary union");
 }
 
+geos::GeomPtr floatingUnion(const geos::Context& context, std::vector<geos::GeomPtr> parts, double grid) {
+  geos::GeomPtr all = context.collection(GEOS_GEOMETRYCOLLECTION, std::move(parts));
+  if (GEOSGeometry* g = GEOSUnaryUnion_r(context.handle(), all.get())) return context.own(g, "unary union");
+  return context.own(GEOSUnaryUnionPrec_r(context.handle(), all.get(), grid), "unary union");
+}
+
+geos::GeomPtr floatingOverlay(const geos::Context& context, OverlayOp op, const GEOSGeometry* a,
+                              const GEOSGeometry* b, double grid) {
+  const GEOSContextHandle_t h = context.handle();
+  GEOSGeometry* g = op == OverlayOp::Union ? GEOSUnion_r(h, a, b) : GEOSDifference_r(h, a, b);
+  if (g) return context.own(g, "overlay");
+  return context.own(
+      op == OverlayOp::Union ? GEOSUnionPrec_r(h, a, b, grid) : GEOSDifferencePrec_r(h, a, b, grid),
+      "overlay");
+}
+
 geos::GeomPtr frameAnchoredUnion(const geos::Context& context, const GeosWorkers& workers,
                                  std::vector<geos::GeomPtr> parts, double grid, double squareSize) {
   if (!(squareSize > 0.0))
@@ -548,7 +564,10 @@ RoadGeometry buildRoadGeometry(const RoadNetwork& network, const RoadGeometryOpt
   }
 
   // Overlap resolution: every piece loses what higher-priority pieces already cover. Each piece only
-  // reads the snapped raw pieces, so the pieces are resolved in parallel, one result slot each.
+  // reads the snapped raw pieces, so the pieces are resolved in parallel, one result slot each. These
+  // overlays stay snap-rounded on the grid: with floating ones (floatingOverlay; 2.2 CPU s less at
+  // 1024²) a tiled run's pieces no longer matched the single run's (Monaco, tiles of 120 cells with a
+  // halo of 64: one piece more), which the snap-rounded ones do.
   const Progress resolve = subProgress(progress, 0.5, 1.0);
   ProgressTicker resolveTicker(resolve, "road geometry overlaps", raw.size());
   {
