@@ -96,8 +96,8 @@ app::CommandSpec spec() {
   o.push_back(option("-dsep-major", ValueType::Real, "<metres>",
                      "Separation of major roads; default the spacing of the -roads (2 x land area / their "
                      "length on the land: a grid with as much road) up to " +
-                         app::numberText(d.trace.majorDsep) + ", without -roads " +
-                         app::numberText(d.trace.majorDsep) + ".")
+                         app::numberText(d.trace.majorDsep) + " and at least -dsep-floor, without -roads " +
+                         app::numberText(d.trace.majorDsep) + "; printed unless -q.")
                   .withUnit("m")
                   .atLeast(1e-3));
   o.push_back(
@@ -105,6 +105,13 @@ app::CommandSpec spec() {
              "Separation of minor roads; default -dsep-major x " + app::numberText(d.minorDsepRatio) + ".")
           .withUnit("m")
           .atLeast(1e-3));
+  o.push_back(option("-dsep-floor", ValueType::Real, "<metres>",
+                     "Least -dsep-major taken from the -roads spacing: finer roads (a full mapped network, a "
+                     "fine grid) are traced at this spacing, with a warning. Not applied to a given "
+                     "-dsep-major.")
+                  .withUnit("m")
+                  .byDefault(app::numberText(d.derivedDsepFloor))
+                  .atLeast(1e-3));
   o.push_back(option("-dtest-ratio", ValueType::Real, "<ratio>",
                      "d_test / d_sep: a street stops this close to a parallel one.")
                   .byDefault(app::numberText(d.trace.dtestRatio)));
@@ -351,16 +358,24 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   const std::string outputPath = args.positionals()[0];
   if (!args.given("-boundary")) throw invalidOption("-boundary is required: the polygon the streets grow in");
   streets::StreetsOptions options;
-  options.field.seed = static_cast<std::uint64_t>(args.integer("-seed"));
-  options.trace.seed = options.field.seed;
-  options.bow.seed = options.field.seed;
+  if (args.given("-dsep-floor")) options.derivedDsepFloor = args.real("-dsep-floor");
+  // A pair given (or a -dsep-minor over the fixed default, without -roads) is checked before any
+  // input is read; a -dsep-major derived from the -roads only after reading them.
+  if (args.given("-dsep-minor") && (args.given("-dsep-major") || !args.given("-roads"))) {
+    const double major = args.given("-dsep-major") ? args.real("-dsep-major") : options.trace.majorDsep;
+    if (args.real("-dsep-minor") > major)
+      throw invalidOption("-dsep-minor " + args.str("-dsep-minor") + " exceeds -dsep-major " +
+                          (args.given("-dsep-major")
+                               ? args.str("-dsep-major")
+                               : app::numberText(major) + " (the default without -roads)"));
+  }
+  options.seed = static_cast<std::uint64_t>(args.integer("-seed"));
   options.bow.ratio = args.real("-bow");
   options.trace.stopShortShare = args.real("-stop-short-share");
   options.trace.majorClearanceRatio = args.real("-major-clearance-ratio");
   options.noise.fullShare = args.real("-delete-share");
   options.noise.partialShare = args.real("-cut-share");
   options.noise.bendShare = args.real("-bend-share");
-  options.noise.startIndex = 1 + static_cast<int>(args.integer("-seed") % 100000);
   options.field.noiseAmplitude = args.real("-noise") * M_PI / 180.0;
   if (args.given("-noise-wavelength")) options.field.noiseWavelength = args.real("-noise-wavelength");
   options.trace.dtestRatio = args.real("-dtest-ratio");
@@ -473,19 +488,35 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
     input.densitySpec = spec;
   }
   // d_sep: given, or the spacing of the roads that shape the field (their scale, not a fixed one).
+  std::string dsepSource = args.given("-dsep-major") ? "given" : "default";
   if (args.given("-dsep-major")) {
     options.trace.majorDsep = args.real("-dsep-major");
   } else if (!roads.empty()) {
     // At most the fixed default: a few lines given to shape the field are not a network, and their
-    // spacing (2 A / L) would leave a city of them almost without streets.
+    // spacing (2 A / L) would leave a city of them almost without streets. At least the floor: a
+    // full mapped network would otherwise be traced again at its own, far finer, spacing.
     const double spacing = streets::roadSpacing(roads, input.boundary, input.water);
-    if (spacing > 0.0) options.trace.majorDsep = std::min(spacing, options.trace.majorDsep);
+    if (spacing > 0.0 && spacing < options.trace.majorDsep) {
+      options.trace.majorDsep = spacing;
+      dsepSource = "from the -roads spacing";
+      if (spacing < options.derivedDsepFloor) {
+        options.trace.majorDsep = options.derivedDsepFloor;
+        dsepSource = "the -roads spacing " + app::numberText(spacing) + " m raised to -dsep-floor";
+        ctx.warn("the -roads are " + app::numberText(spacing) + " m apart, closer than -dsep-floor " +
+                 app::numberText(options.derivedDsepFloor) +
+                 " m: the major roads are traced at the floor (give -dsep-major to choose)");
+      }
+    }
   }
   options.trace.minorDsep =
       args.given("-dsep-minor") ? args.real("-dsep-minor") : options.minorDsepRatio * options.trace.majorDsep;
-  if (options.trace.minorDsep > options.trace.majorDsep)
-    throw invalidOption("-dsep-minor " + args.str("-dsep-minor") + " exceeds -dsep-major " +
-                        app::numberText(options.trace.majorDsep));
+  if (options.trace.minorDsep > options.trace.majorDsep)  // only a derived -dsep-major gets here
+    throw invalidOption("the -dsep-major derived from the -roads spacing, " +
+                        app::numberText(options.trace.majorDsep) + " m, is below -dsep-minor " +
+                        args.str("-dsep-minor") + "; give -dsep-major");
+  if (!ctx.quiet && ctx.out)
+    *ctx.out << "dsep-major: " << app::numberText(options.trace.majorDsep) << " m (" << dsepSource
+             << "), dsep-minor: " << app::numberText(options.trace.minorDsep) << " m\n";
 
   const streets::StreetNetwork net = streets::generateStreets(input, options, ctx.progress);
   if (net.streets.empty())

@@ -132,24 +132,38 @@ traced=$(ogrinfo -ro -q -dialect sqlite -sql "SELECT COUNT(*) AS n FROM streets 
 [ "${traced:-0}" -gt 100 ] || fail "only ${traced:-0} traced streets around the kept roads"
 run_cmd streets -q -boundary "$WORK/boundary.gpkg" -roads "$WORK/roads.gpkg" -dsep-major 300 "$WORK/notkept.gpkg"
 expect_eq "$(ogrinfo -ro -q -sql "SELECT COUNT(*) AS n FROM streets WHERE source = 'existing'" "$WORK/notkept.gpkg" | sed -n 's/^  n (Integer.*) = //p')" "0" "roads kept without -keep-roads"
-# Without -dsep-major the major spacing is that of the -roads (2 A / L, at most 360 m): a grid of roads
-# every 250 m over the 2 km square gives about twice the streets of the fixed 360 m.
-$PY - "$WORK/grid_roads.csv" <<'PY'
+# Without -dsep-major the major spacing is that of the -roads (2 A / L, at most 360 m, at least
+# -dsep-floor), printed on stdout: a grid of roads every 250 m over the 2 km square gives 250 m (the
+# network is denser than the fixed 360 m's; 270 against 165 streets when written).
+grid_roads() {  # grid_roads <spacing> <name>: roads every <spacing> m both ways over the boundary
+  $PY - "$WORK/$2.csv" "$1" <<'PY'
 import sys
+s = float(sys.argv[2])
 with open(sys.argv[1], "w") as f:
     f.write("id,WKT\n")
-    for i in range(8):
-        c = 125 + 250 * i
+    for i in range(int(2000 / s)):
+        c = s / 2 + s * i
         f.write(f'{2 * i},"LINESTRING({450000 + c} 5550000,{450000 + c} 5552000)"\n')
         f.write(f'{2 * i + 1},"LINESTRING(450000 {5550000 + c},452000 {5550000 + c})"\n')
 PY
-ogr2ogr -q -f GPKG -a_srs EPSG:32633 -nln roads "$WORK/grid_roads.gpkg" "$WORK/grid_roads.csv"
-run_cmd streets -q -boundary "$WORK/boundary.gpkg" -roads "$WORK/grid_roads.gpkg" "$WORK/spaced.gpkg"
+  ogr2ogr -q -f GPKG -a_srs EPSG:32633 -nln roads "$WORK/$2.gpkg" "$WORK/$2.csv"
+}
+grid_roads 250 grid_roads
+run_cmd streets -progress none -boundary "$WORK/boundary.gpkg" -roads "$WORK/grid_roads.gpkg" "$WORK/spaced.gpkg"
 expect_status 0
-run_cmd streets -q -boundary "$WORK/boundary.gpkg" -roads "$WORK/grid_roads.gpkg" -dsep-major 360 "$WORK/fixed.gpkg"
+expect_stdout_contains "dsep-major: 250 m (from the -roads spacing), dsep-minor: 125 m"
+run_cmd streets -progress none -boundary "$WORK/boundary.gpkg" -roads "$WORK/grid_roads.gpkg" -dsep-major 360 "$WORK/fixed.gpkg"
 expect_status 0
+expect_stdout_contains "dsep-major: 360 m (given), dsep-minor: 180 m"
 spaced=$(feature_count "$WORK/spaced.gpkg" streets) fixed=$(feature_count "$WORK/fixed.gpkg" streets)
-[ "${spaced:-0}" -gt $((3 * ${fixed:-0} / 2)) ] || fail "-roads every 250 m give $spaced streets, the fixed 360 m $fixed"
+[ "${spaced:-0}" -gt "${fixed:-0}" ] || fail "-roads every 250 m give $spaced streets, the fixed 360 m $fixed"
+# Roads finer than -dsep-floor (default 100 m; a full mapped network given as -roads) are traced at
+# the floor, with a warning: every 20 m would otherwise give some 25,000 streets on these 4 km².
+grid_roads 20 fine_roads
+run_cmd streets -progress none -boundary "$WORK/boundary.gpkg" -roads "$WORK/fine_roads.gpkg" "$WORK/floored.gpkg"
+expect_status 0
+expect_stdout_contains "dsep-major: 100 m (the -roads spacing 20 m raised to -dsep-floor), dsep-minor: 50 m"
+expect_stderr_contains "the -roads are 20 m apart, closer than -dsep-floor 100 m"
 # -major-clearance-ratio reaches the tracer: at d_sep_minor = d_sep_major / 2, keeping d_test from the
 # major roads fills the regions between them with minor roads (far more streets than the default 1).
 printf '{"elements": [{"kind": "grid", "x": 451000, "y": 5551000, "angle": 20}]}\n' >"$WORK/grid_design.json"
@@ -185,6 +199,13 @@ ogr2ogr -q -f GPKG -nln boundary "$WORK/nocrs.gpkg" "$WORK/boundary.csv"
 bad 1 "has no CRS; streets needs a projected CRS in metres" -boundary "$WORK/nocrs.gpkg" -design "$WORK/design.json"
 bad 2 "ERROR: -dsep-major" -boundary "$WORK/boundary.gpkg" -design "$WORK/design.json" -dsep-major 0
 bad 2 "d_test must be > 0 and at most d_sep" -boundary "$WORK/boundary.gpkg" -design "$WORK/design.json" -dtest-ratio 1.5
+# -dsep-minor over a given -dsep-major fails before any input is read (the missing DEM is not
+# reached); over one derived from the -roads spacing, the message names where it came from.
+bad 2 "ERROR: -dsep-minor 120 exceeds -dsep-major 100" -boundary "$WORK/boundary.gpkg" -design "$WORK/design.json" \
+  -dsep-major 100 -dsep-minor 120 -dem "$WORK/missing.tif"
+grid_roads 100 grid100
+bad 2 "ERROR: the -dsep-major derived from the -roads spacing, 100 m, is below -dsep-minor 120; give -dsep-major" \
+  -boundary "$WORK/boundary.gpkg" -roads "$WORK/grid100.gpkg" -dsep-minor 120
 gdal_create -q -of GTiff -outsize 50 50 -bands 1 -burn 10 -a_srs EPSG:32632 -a_ullr 450000 5552000 452000 5550000 "$WORK/dem_other.tif" 2>/dev/null ||
   gdal_translate -q -a_srs EPSG:32632 -a_ullr 450000 5552000 452000 5550000 "$WORK/field.tif" -b 1 "$WORK/dem_other.tif"
 bad 1 "not the output CRS EPSG:32633" -boundary "$WORK/boundary.gpkg" -design "$WORK/design.json" -dem "$WORK/dem_other.tif"

@@ -30,6 +30,22 @@ double length(const LineString& line) {
   return l;
 }
 
+LineString headOfLength(const LineString& line, double keep) {
+  LineString out{line.front()};
+  if (!(keep > 0.0)) return out;
+  double at = 0.0;
+  for (size_t i = 0; i + 1 < line.size(); ++i) {
+    const double len = distance(line[i], line[i + 1]);
+    if (at + len >= keep) {
+      out.push_back(line[i] + (line[i + 1] - line[i]) * ((keep - at) / std::max(len, 1e-300)));
+      return out;
+    }
+    out.push_back(line[i + 1]);
+    at += len;
+  }
+  return out;
+}
+
 LineString densified(const LineString& line, double spacing) {
   if (line.size() < 2) return line;
   LineString dense;

@@ -18,18 +18,34 @@ struct Vec2 {
   Vec2 operator-(const Vec2& o) const { return {x - o.x, y - o.y}; }
   Vec2 operator*(double s) const { return {x * s, y * s}; }
   Vec2 operator/(double s) const { return {x / s, y / s}; }
-  Vec2& operator+=(const Vec2& o) { x += o.x; y += o.y; return *this; }
-  Vec2& operator-=(const Vec2& o) { x -= o.x; y -= o.y; return *this; }
+  Vec2& operator+=(const Vec2& o) {
+    x += o.x;
+    y += o.y;
+    return *this;
+  }
+  Vec2& operator-=(const Vec2& o) {
+    x -= o.x;
+    y -= o.y;
+    return *this;
+  }
   bool operator==(const Vec2& o) const { return x == o.x && y == o.y; }
   bool operator!=(const Vec2& o) const { return !(*this == o); }
 };
 
-inline double dot(const Vec2& a, const Vec2& b) { return a.x * b.x + a.y * b.y; }
-inline double cross(const Vec2& a, const Vec2& b) { return a.x * b.y - a.y * b.x; }
+inline double dot(const Vec2& a, const Vec2& b) {
+  return a.x * b.x + a.y * b.y;
+}
+inline double cross(const Vec2& a, const Vec2& b) {
+  return a.x * b.y - a.y * b.x;
+}
 // Plain sqrt, not std::hypot: coordinates are cells or metres of one city, far from overflow, and
 // hypot's scaling made it the top symbol of a vectorize profile (a fifth of the CPU).
-inline double length(const Vec2& a) { return std::sqrt(a.x * a.x + a.y * a.y); }
-inline double distance(const Vec2& a, const Vec2& b) { return length(a - b); }
+inline double length(const Vec2& a) {
+  return std::sqrt(a.x * a.x + a.y * a.y);
+}
+inline double distance(const Vec2& a, const Vec2& b) {
+  return length(a - b);
+}
 /// Distance from p to the segment a-b (to a when the segment has no length).
 inline double distanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b) {
   const Vec2 ab = b - a;
@@ -62,5 +78,8 @@ double area(const MultiPolygon& polygons);
 double length(const LineString& line);
 /// The line with points added so that no step is longer than `spacing` (a closed ring stays closed).
 LineString densified(const LineString& line, double spacing);
+/// The first `keep` metres of a line from its start (the whole line when it is shorter, its first
+/// point alone when keep <= 0).
+LineString headOfLength(const LineString& line, double keep);
 
 }  // namespace urbanvec

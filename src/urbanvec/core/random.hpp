@@ -17,4 +17,9 @@ inline std::uint64_t deriveSeed(std::uint64_t runSeed, std::uint64_t item) {
   return z ^ (z >> 31);
 }
 
+/// A uniform draw in [0, 1) for (run seed, item): the top 53 bits of deriveSeed.
+inline double unitDraw(std::uint64_t runSeed, std::uint64_t item) {
+  return static_cast<double>(deriveSeed(runSeed, item) >> 11) * 0x1p-53;
+}
+
 }  // namespace urbanvec

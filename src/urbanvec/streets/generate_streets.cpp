@@ -103,7 +103,8 @@ StreetNetwork generateStreets(const StreetsInput& input, const StreetsOptions& o
         "the street design is empty: give design elements (-design), roads or lines for the field "
         "(-roads, -field-lines) or a DEM (-dem)");
   if (input.boundary.empty()) throw invalidInput("the boundary holds no polygon");
-  const TraceOptions& t = options.trace;
+  TraceOptions t = options.trace;
+  t.seed = options.seed;
   if (!(t.majorDsep > 0.0) || !(t.minorDsep > 0.0))
     throw invalidOption("-dsep-major and -dsep-minor must be > 0");
   if (!(t.dtestRatio > 0.0) || t.dtestRatio > 1.0)
@@ -122,6 +123,7 @@ StreetNetwork generateStreets(const StreetsInput& input, const StreetsOptions& o
 
   StreetNetwork net;
   FieldOptions fo = options.field;
+  fo.seed = options.seed;
   if (!(fo.cellSize > 0.0)) fo.cellSize = options.fieldCellRatio * t.minorDsep;
   if (!(fo.noiseWavelength > 0.0)) fo.noiseWavelength = options.noiseWavelengthRatio * t.majorDsep;
   std::vector<DesignElement> elements = input.design;
@@ -210,13 +212,16 @@ StreetNetwork generateStreets(const StreetsInput& input, const StreetsOptions& o
   // §13.6 graph noise: deletions and cut-backs create no crossing, so nothing is noded again.
   std::vector<Street> pieces;
   if (options.noise.fullShare > 0.0 || options.noise.partialShare > 0.0 || options.noise.bendShare > 0.0) {
-    pieces = applyGraphNoise(graph, edgeLevel, options.noise);
+    GraphNoiseOptions noise = options.noise;
+    noise.startIndex = 1 + static_cast<int>(options.seed % 100000);
+    pieces = applyGraphNoise(graph, edgeLevel, noise);
   } else {
     for (int e = 0; e < static_cast<int>(graph.edgeCount()); ++e)
       pieces.push_back({graph.edge(e).line, edgeLevel[static_cast<std::size_t>(e)], 0});
   }
   {
     BowOptions bow = options.bow;
+    bow.seed = options.seed;
     bow.maxOffset = options.bowMaxOffsetRatio * t.minorDsep;
     bowStreets(pieces, bow);
   }

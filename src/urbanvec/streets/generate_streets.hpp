@@ -31,6 +31,10 @@ struct StreetsInput {
 };
 
 struct StreetsOptions {
+  /// The run seed. generateStreets hands it to every stage, over their own seed fields: the field's
+  /// Perlin noise, the stop-short draws, the graph noise's Halton start (1 + seed mod 100000) and the
+  /// bows; each stage salts its draws, so the streams stay independent.
+  std::uint64_t seed = 1;
   FieldOptions field;
   TraceOptions trace;
   GraphNoiseOptions noise;
@@ -45,6 +49,12 @@ struct StreetsOptions {
   /// guess") puts the median edge of a city whose main roads are 150-200 m apart at 40-50 m, under
   /// the 5th percentile of the world's cities (52 m, Boeing 2020); half keeps it at 75-100 m, mid-range.
   double minorDsepRatio = 0.5;
+  /// Least major d_sep (m) taken from the spacing of given roads (the CLI's -dsep-floor) [INFERENCE:
+  /// the spec derives no d_sep from roads; 100 m keeps the derived minor d_sep at 50 m or more, near
+  /// the narrowest common city blocks (Portland's 61 m), and keeps a full mapped network or a fine
+  /// grid given as roads (a spacing of 20-60 m) from tracing tens of thousands of streets per km²;
+  /// every derived d_sep of bench/streets/compare.sh is above it, 123-203 m].
+  double derivedDsepFloor = 100.0;
   /// Noise wavelength = ratio × major d_sep when field.noiseWavelength is 0 (spec §16: 2).
   double noiseWavelengthRatio = 2.0;
   /// Polylines are resampled into elements about ratio × major d_sep apart (spec §4.3: d_sep / 2).

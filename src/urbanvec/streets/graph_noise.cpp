@@ -20,26 +20,7 @@ double halton(int index, int base) {
   return r;
 }
 
-namespace {
-
-/// The first `fraction` of a line's length from its start.
-LineString headOf(const LineString& line, double fraction) {
-  const double target = fraction * length(line);
-  LineString out{line.front()};
-  double at = 0.0;
-  for (std::size_t i = 0; i + 1 < line.size(); ++i) {
-    const double len = distance(line[i], line[i + 1]);
-    if (at + len >= target) {
-      out.push_back(line[i] + (line[i + 1] - line[i]) * ((target - at) / std::max(len, 1e-300)));
-      return out;
-    }
-    out.push_back(line[i + 1]);
-    at += len;
-  }
-  return out;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 std::vector<Street> applyGraphNoise(const PlanarGraph& graph, const std::vector<StreetLevel>& edgeLevel,
                                     const GraphNoiseOptions& options) {
@@ -216,7 +197,7 @@ std::vector<Street> applyGraphNoise(const PlanarGraph& graph, const std::vector<
     LineString line = graph.edge(e).line;
     if (fate[k] == Cut) {
       if (cutFromB[k]) std::reverse(line.begin(), line.end());
-      line = headOf(line, cutFraction[k]);
+      line = headOfLength(line, cutFraction[k] * length(line));
     }
     out.push_back({std::move(line), edgeLevel[k], 0});
   }
@@ -277,9 +258,7 @@ void bowStreets(std::vector<Street>& pieces, const BowOptions& options) {
     const Vec2 a = s.line.front(), b = s.line.back();
     const double chord = distance(a, b);
     if (!(chord > 0.0)) continue;
-    const double u =
-        static_cast<double>(deriveSeed(options.seed ^ 0xb0e5ULL, static_cast<std::uint64_t>(i)) >> 11) *
-        0x1p-53;
+    const double u = unitDraw(options.seed ^ 0xb0e5ULL, static_cast<std::uint64_t>(i));
     double offset =
         std::clamp((2.0 * u - 1.0) * options.ratio * chord, -options.maxOffset, options.maxOffset);
     // The piece densified to at least 8 pieces (a traced street has a vertex every integration step, an

@@ -20,7 +20,8 @@ struct GraphNoiseOptions {
   double fullShare = 0.15;
   /// Share of the minor segments cut back to a stub of 20-60 % of their length (a dead end).
   double partialShare = 0.05;
-  /// First Halton index used (spec: reproducible for a fixed start index).
+  /// First Halton index used (spec: reproducible for a fixed start index; generateStreets sets it from
+  /// StreetsOptions::seed).
   int startIndex = 1;
   /// Only segments whose two ends have at least this street degree are touched: 4 = between two
   /// crossings, so a deletion turns two crossings into T-junctions and never a T-junction into a bend.
@@ -55,6 +56,7 @@ struct BowOptions {
   /// Largest bow (m); generateStreets sets it to StreetsOptions::bowMaxOffsetRatio × the minor d_sep
   /// (a quarter), so that two facing bows never close the gap d_test between parallel streets.
   double maxOffset = 20.0;
+  /// Seed of the per-street draws (generateStreets sets it from StreetsOptions::seed).
   std::uint64_t seed = 1;
 };
 

@@ -289,8 +289,7 @@ class Tracer {
     line.insert(line.end(), forward.points.begin() + 1, forward.points.end());
     if (l == StreetLevel::Minor && o_.stopShortShare > 0.0) {
       auto stopsShort = [&](std::uint64_t end) {
-        return static_cast<double>(deriveSeed(o_.seed ^ 0x5707'5402ULL, 2 * index + end) >> 11) * 0x1p-53 <
-               o_.stopShortShare;
+        return unitDraw(o_.seed ^ 0x5707'5402ULL, 2 * index + end) < o_.stopShortShare;
       };
       // Only a street that joins streets at both ends may stop short, and at one end only: it stays
       // attached by the other (a cul-de-sac), never a street cut off from the network.
@@ -308,18 +307,7 @@ class Tracer {
 
   /// The line without its last `gap` metres (a single point when it is shorter).
   static LineString cutTail(const LineString& line, double gap) {
-    double keep = length(line) - gap;
-    LineString out{line.front()};
-    for (std::size_t i = 0; i + 1 < line.size() && keep > 0.0; ++i) {
-      const double len = distance(line[i], line[i + 1]);
-      if (len >= keep) {
-        out.push_back(line[i] + (line[i + 1] - line[i]) * (keep / len));
-        break;
-      }
-      out.push_back(line[i + 1]);
-      keep -= len;
-    }
-    return out;
+    return headOfLength(line, length(line) - gap);
   }
 
   /// The family a road running along `dir` at p follows: the eigenvector closer to its direction.

@@ -70,7 +70,7 @@ struct TraceOptions {
   /// as dense as before (kept matches 17.9 -> 13.3 of 28, seeds 1-8); so the default stays 1
   /// [INFERENCE: the spec traces each region on its own; docs/streets.md].
   double majorClearanceRatio = 1.0;
-  /// Seed of the per-end draws (the run seed).
+  /// Seed of the per-end draws (the run seed; generateStreets sets it from StreetsOptions::seed).
   std::uint64_t seed = 1;
   /// Trace minor roads (the second level).
   bool minorRoads = true;

@@ -65,6 +65,7 @@ struct FieldOptions {
   double noiseAmplitude = 0.2;   ///< radians, at most π/2; 0 = no noise
   double noiseWavelength = 0.0;  ///< metres; 0 = set by the caller (2 × major d_sep)
   int noiseOctaves = 2;
+  /// Seed of the noise (generateStreets sets it from StreetsOptions::seed).
   std::uint64_t seed = 1;
   /// Worker threads for the per-vertex evaluation (results do not depend on it).
   int threads = 1;

@@ -36,6 +36,14 @@ TEST(Geometry, AreaOfSquareWithHole) {
   EXPECT_DOUBLE_EQ(length(LineString{{0, 0}, {3, 4}, {3, 10}}), 11.0);
 }
 
+TEST(Geometry, HeadOfLengthKeepsTheFirstMetres) {
+  const LineString l{{0, 0}, {10, 0}, {10, 10}};
+  EXPECT_EQ(headOfLength(l, 15), (LineString{{0, 0}, {10, 0}, {10, 5}}));
+  EXPECT_EQ(headOfLength(l, 4), (LineString{{0, 0}, {4, 0}}));
+  EXPECT_EQ(headOfLength(l, 25), l);
+  EXPECT_EQ(headOfLength(l, -3), (LineString{{0, 0}}));
+}
+
 TEST(LandUse, CodesAndNames) {
   EXPECT_EQ(static_cast<int>(LandUse::SecondaryRoad), 2);
   EXPECT_EQ(static_cast<int>(LandUse::PrimaryRoad), 3);
@@ -79,6 +87,16 @@ TEST(Random, DerivedSeedsDifferPerItemAndAreStable) {
   EXPECT_NE(deriveSeed(1, 0), deriveSeed(1, 1));
   EXPECT_NE(deriveSeed(1, 0), deriveSeed(2, 0));
   EXPECT_EQ(deriveSeed(42, 7), deriveSeed(42, 7));
+  // unitDraw: the top 53 bits of deriveSeed, in [0, 1), spread over it.
+  double sum = 0.0;
+  for (std::uint64_t i = 0; i < 1000; ++i) {
+    const double u = unitDraw(5, i);
+    ASSERT_GE(u, 0.0);
+    ASSERT_LT(u, 1.0);
+    sum += u;
+  }
+  EXPECT_NEAR(sum / 1000, 0.5, 0.03);
+  EXPECT_EQ(unitDraw(5, 3), static_cast<double>(deriveSeed(5, 3) >> 11) / 9007199254740992.0);
 }
 
 TEST(Arguments, ParsesDefaultsRangesAndUsageErrors) {
