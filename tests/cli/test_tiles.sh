@@ -67,6 +67,13 @@ run_tiles run --sequential -q -tile 200 -halo 64 -max-halo 256 "${MIN[@]}" "$WOR
 expect_status 0
 expect_eq "$(digest_of "$WORK/monaco_tiled.gpkg" "${ALL[@]}")" "$(digest_of "$WORK/monaco.gpkg" "${ALL[@]}")" "Monaco tiled vs single"
 expect_eq "$(feature_count "$WORK/monaco_tiled.gpkg" pavement)" "$(feature_count "$WORK/monaco.gpkg" pavement)" "Monaco pavement count"
+# Tiles of 256 cells: tile r000_c000's window (cells 0..326 wide) ends 2 cells east of a kept external
+# block, where a perimeter road runs along the cut side and moves a junction next to the block; the
+# block itself stays a cell away from the side, so only the shaped-road guard (tile.py shaped_roads)
+# redoes the tile with a larger halo (without it: 1 block and its 59 parcels differ).
+run_tiles run --sequential -q -tile 256 -halo 64 -max-halo 256 "${MIN[@]}" "$WORK/monaco_256.gpkg"
+expect_status 0
+expect_eq "$(digest_of "$WORK/monaco_256.gpkg" "${ALL[@]}")" "$(digest_of "$WORK/monaco.gpkg" "${ALL[@]}")" "Monaco tiles of 256 vs single"
 
 # A too-small halo that may not grow is caught, naming the tile; nothing is written.
 run_tiles run --sequential -q -tile 50 -halo 4 -max-halo 4 "${IN[@]}" "$WORK/small.gpkg"

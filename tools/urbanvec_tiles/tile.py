@@ -6,7 +6,8 @@ folder, then keep what the tile owns (docs/scale.md "Ownership"):
 - roads cut at the core edges (pieces carry which ends are seam cuts, merged by stitch.py);
 - pavement and water clipped to the core (pieces merged across seams by stitch.py).
 Halo guard: a kept block, parcel or spine, or a road with a kept piece, that comes within one cell of a
-side of the window that is not the grid's edge was cut off or shaped by the cut, and so was a kept
+side of the window that is not the grid's edge was cut off or shaped by the cut; so was a kept block
+within one cell of a road the cut may have shaped (shaped_roads), and a kept
 block or perimeter road in a road-bounded region that reaches such a side (stage A2 treats a region
 touching the grid's edge as open, so a region cut by the window is not the single run's region); the tile is redone with twice the halo, up to
 -max-halo, else the run fails naming the tile."""
@@ -131,6 +132,36 @@ def open_regions(roads, window, frame, globally_open=None):
     return cut if globally_open is None else cut & ~globally_open
 
 
+def shaped_roads(roads, wbox, s, tol):
+    """The roads of a tile's output that the window's cut may have shaped: those that come within `tol`
+    of a side of the window that is not the grid's edge (a road there is cut, or runs along the cut:
+    a perimeter road follows the window's side where the single run's road lies outside it), and the
+    roads that share an end node with one of them (the node's place is found from every road meeting
+    there, so their ends move with it). A block's outline follows the roads around it, so a kept block
+    next to one of these is shaped by the cut even when the block itself stays away from the window's
+    side (Monaco at tiles of 128 and 256 cells: a perimeter road along the cut side 7 m from a kept
+    block, and a junction 1.5 cells from it that moved the block's corner by 3 m).
+    Returns [(envelope, geometry)]."""
+    rows = []
+    for f in roads:
+        g = f.GetGeometryRef()
+        rows.append((g.GetEnvelope(), g.Clone(), f.GetField("from_node"), f.GetField("to_node")))
+    cut_nodes = set()
+    cut = [k for k, (env, g, a, b) in enumerate(rows) if _touches(_envelope_u(g, s), wbox, tol)]
+    for k in cut:
+        cut_nodes.update(v for v in rows[k][2:] if v is not None)
+    cut = set(cut)
+    return [(env, g) for k, (env, g, a, b) in enumerate(rows) if k in cut or a in cut_nodes or b in cut_nodes]
+
+
+def _near_any(g, shaped, tol):
+    minx, maxx, miny, maxy = g.GetEnvelope()
+    for (a, b, c, d), r in shaped:
+        if a <= maxx + tol and b >= minx - tol and c <= maxy + tol and d >= miny - tol and g.Distance(r) <= tol:
+            return True
+    return False
+
+
 def extract(path, tile, window, frame, roads_only, opened=None):
     """(owned layers, schemas, guard violations) of one tile's GeoPackage. `opened`: open_regions()."""
     gt = frame.gt
@@ -174,13 +205,15 @@ def extract(path, tile, window, frame, roads_only, opened=None):
 
     kept_blocks = set()
     if not roads_only:
+        shaped = shaped_roads(ds.GetLayerByName("roads"), wbox, s, tol)
         for f in ds.GetLayerByName("blocks"):
             g = f.GetGeometryRef()
             p = g.PointOnSurface()
             if G.owns(core, p.GetX(), s * p.GetY()):
                 kept_blocks.add(f.GetField("block_id"))
                 out["blocks"].append((g.ExportToWkb(), _attrs(f, names["blocks"])))
-                if _touches(_envelope_u(g, s), wbox, tol) or in_open_region(p.GetX(), p.GetY()):
+                if _touches(_envelope_u(g, s), wbox, tol) or in_open_region(p.GetX(), p.GetY()) or \
+                        _near_any(g, shaped, tol):
                     violation("blocks", g)
         for name in ("parcels", "spines"):
             for f in ds.GetLayerByName(name):
