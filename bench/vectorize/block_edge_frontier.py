@@ -10,6 +10,8 @@ matched at IoU >= 0.7 with their best result block. For each unmatched one, the 
   truth edges the result's faces (polygons of its road centrelines and perimeters) minus the truth's
               road surfaces (truth centrelines buffered by the curb half widths, 1 / 0.5 cell): block
               edges on the truth's surfaces, the result's topology kept;
+  truth edges for one class only  the faces minus the truth's surfaces of that class and the result's
+              centrelines of the other buffered by the same half widths: what each class's position is worth;
   result lines buffered  the same faces minus the result's centrelines buffered by the same half
               widths (round, no curb corners): the result's centrelines with the truth's construction,
               and with other half widths per class (WIDTHS);
@@ -115,6 +117,16 @@ matched = matchable = edges_matched = own_matched = 0
 res_surfaces = [unary_union([g.buffer((sw if a["road_class"] == "secondary" else pw) * cs, 8)
                              for g, a in res_roads if a["road_class"] in half]) for sw, pw in WIDTHS]
 res_surface = res_surfaces[0]
+
+
+def class_surface(roads, name):
+    return unary_union([g.buffer(half[name] * cs, 8) for g, a in roads if a["road_class"] == name])
+
+
+# one class's edges on the truth's surfaces, the other's on the result's lines (buffered 0.5 / 1 cell)
+mixed_surfaces = {"secondary": class_surface(truth_roads, "secondary").union(class_surface(res_roads, "primary")),
+                  "primary": class_surface(res_roads, "secondary").union(class_surface(truth_roads, "primary"))}
+mixed_matched = dict.fromkeys(mixed_surfaces, 0)
 width_matched = [0] * len(WIDTHS)
 grown_matched = [0] * len(GROW)
 matched_offsets = []
@@ -127,6 +139,8 @@ for t, a in layer(f"{grid}/truth.gpkg", "blocks"):
     edges = best_iou(t, [f.difference(surface) for f in fs])
     own = best_iou(t, [f.difference(res_surface) for f in fs])
     edges_matched += edges >= 0.7
+    for name, surf in mixed_surfaces.items():
+        mixed_matched[name] += best_iou(t, [f.difference(surf) for f in fs]) >= 0.7
     own_matched += own >= 0.7
     for k, surf in enumerate(res_surfaces):
         width_matched[k] += best_iou(t, [f.difference(surf) for f in fs]) >= 0.7
@@ -163,6 +177,8 @@ for k, d in enumerate(GROW):
     print(f"grown {d:+g}: {grown_matched[k]} of {matchable} matched ({sum(r[3][k] >= 0.7 for r in rows)} "
           f"of the unmatched)")
 print(f"result lines buffered: {own_matched} of {matchable}; truth edges: {edges_matched} of {matchable}")
+print(f"truth edges for secondaries only: {mixed_matched['secondary']} of {matchable}; "
+      f"for primaries only: {mixed_matched['primary']} of {matchable}")
 for (sw, pw), n in zip(WIDTHS, width_matched):
     print(f"result lines buffered by {sw:g} / {pw:g} cell (secondary / primary): {n} of {matchable}")
 print(f"of the unmatched, matched with truth edges: {sum(r[4] >= 0.7 for r in rows)}; "
