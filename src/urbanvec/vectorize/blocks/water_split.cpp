@@ -218,7 +218,7 @@ WaterSplit splitBlocksByWater(const std::vector<Polygon>& blocks, const std::vec
         for (int w : hitsOf[b])
           hits.push_back(c.own(GEOSGeom_clone_r(c.handle(), waterGeoms[w].get()), "clone"));
         geos::GeomPtr cut = floatingUnion(c, std::move(hits), grid);
-        geos::GeomPtr rest = floatingOverlay(c, OverlayOp::Difference, blockGeoms[b].get(), cut.get(), grid);
+        geos::GeomPtr rest = floatingDifference(c, blockGeoms[b].get(), cut.get(), grid);
         for (Polygon& piece : c.toPolygons(rest.get())) {
           if (!(area(piece) >= grid)) continue;  // precision crumbs
           orientClockwise(piece);

@@ -137,15 +137,14 @@ class GeosWorkers {
 /// Unary union of `parts` on the precision grid; an empty input gives an empty collection.
 geos::GeomPtr unionOnGrid(const geos::Context& context, std::vector<geos::GeomPtr> parts, double grid);
 
-enum class OverlayOp { Union, Difference };
 /// Union of all parts by GEOS's floating overlay (OverlayNG with floating noding, which retries with
 /// snapping noders on its own), without snap rounding; snap-rounded on `grid` only when GEOS fails.
 geos::GeomPtr floatingUnion(const geos::Context& context, std::vector<geos::GeomPtr> parts, double grid);
-/// a ∪ b or a − b by the floating overlay, snap-rounded on `grid` only when GEOS fails. The water
-/// stages use these; C's overlap resolution and D1's union stay snap-rounded, whose floating versions
-/// broke the tiled = single equality and left invalid polygons (docs/performance.md, issue 21 round 4).
-geos::GeomPtr floatingOverlay(const geos::Context& context, OverlayOp op, const GEOSGeometry* a,
-                              const GEOSGeometry* b, double grid);
+/// a − b by the floating overlay, snap-rounded on `grid` only when GEOS fails. The water stages use
+/// these two; C's overlap resolution and D1's union stay snap-rounded, whose floating versions broke
+/// the tiled = single equality and left invalid polygons (docs/performance.md, issue 21 round 4).
+geos::GeomPtr floatingDifference(const geos::Context& context, const GEOSGeometry* a, const GEOSGeometry* b,
+                                 double grid);
 /// Union of the polygonal `parts` on the precision grid whose vertices near a point depend only on
 /// the parts near that point, not on the rest of the input (issue 22: a window of the raster and the
 /// whole raster give the same union wherever both hold the same parts). GEOS's cascaded union groups

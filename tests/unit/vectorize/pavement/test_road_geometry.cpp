@@ -159,19 +159,18 @@ TEST(RoadGeometry, FloatingOverlaysKeepCrossingsOffThePrecisionGrid) {
         if (distance(q, v) < 1e-12) return true;
     return false;
   };
-  const MultiPolygon cut = ctx.toPolygons(
-      floatingOverlay(ctx, OverlayOp::Difference, square.get(), wedge.get(), coarseGrid).get());
+  const MultiPolygon cut =
+      ctx.toPolygons(floatingDifference(ctx, square.get(), wedge.get(), coarseGrid).get());
   EXPECT_TRUE(hasVertex(cut, {1.2, 0.0}));
   EXPECT_TRUE(hasVertex(cut, {1.8, 3.0}));
   double cutArea = 0.0;
   for (const Polygon& p : cut) cutArea += area(p);
   EXPECT_NEAR(cutArea, 9.0 - 1.5, 1e-9);  // the wedge covers 0.8 to 0.2 of each row, 1.5 in all
-  const MultiPolygon joined =
-      ctx.toPolygons(floatingOverlay(ctx, OverlayOp::Union, square.get(), wedge.get(), coarseGrid).get());
-  ASSERT_EQ(joined.size(), 1u);
-  EXPECT_TRUE(hasVertex(joined, {1.2, 0.0}));
   std::vector<geos::GeomPtr> parts;
   parts.push_back(ctx.polygon(box(0, 0, 3, 3)));
   parts.push_back(ctx.polygon(Polygon{{{1, -1}, {2, 4}, {2, -1}}, {}}));
-  EXPECT_TRUE(hasVertex(ctx.toPolygons(floatingUnion(ctx, std::move(parts), coarseGrid).get()), {1.8, 3.0}));
+  const MultiPolygon joined = ctx.toPolygons(floatingUnion(ctx, std::move(parts), coarseGrid).get());
+  ASSERT_EQ(joined.size(), 1u);
+  EXPECT_TRUE(hasVertex(joined, {1.2, 0.0}));
+  EXPECT_TRUE(hasVertex(joined, {1.8, 3.0}));
 }
