@@ -32,6 +32,10 @@ struct Vec2 {
   bool operator!=(const Vec2& o) const { return !(*this == o); }
 };
 
+/// Order by x, then y: for sorting points and searching sorted ones.
+inline bool lexicographicLess(const Vec2& a, const Vec2& b) {
+  return a.x < b.x || (a.x == b.x && a.y < b.y);
+}
 inline double dot(const Vec2& a, const Vec2& b) {
   return a.x * b.x + a.y * b.y;
 }

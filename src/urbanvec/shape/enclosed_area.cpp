@@ -15,8 +15,7 @@ double turn(const Vec2& o, const Vec2& a, const Vec2& b) {
 
 /// Andrew's monotone chain; counter-clockwise, without collinear points or a repeated end.
 std::vector<Vec2> convexHull(std::vector<Vec2> points) {
-  std::sort(points.begin(), points.end(),
-            [](const Vec2& a, const Vec2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  std::sort(points.begin(), points.end(), lexicographicLess);
   points.erase(std::unique(points.begin(), points.end()), points.end());
   if (points.size() < 3) return points;
   std::vector<Vec2> hull(2 * points.size());

@@ -21,8 +21,7 @@ double bearing(const Vec2& a, const Vec2& b) {
 }
 
 double convexHullArea(std::vector<Vec2> pts) {
-  std::sort(pts.begin(), pts.end(),
-            [](const Vec2& a, const Vec2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  std::sort(pts.begin(), pts.end(), lexicographicLess);
   pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
   if (pts.size() < 3) return 0.0;
   std::vector<Vec2> hull(2 * pts.size());

@@ -119,10 +119,6 @@ class BoxIndex {
   std::vector<std::vector<int>> buckets_;
 };
 
-bool lexicographicLess(const Vec2& a, const Vec2& b) {
-  return a.x < b.x || (a.x == b.x && a.y < b.y);
-}
-
 /// The parts of each block's outline that run along pavement: the road frontage E2 measures. Per
 /// block, the pavement pieces near it (envelope within the envelope of the block buffered by ten
 /// tolerances, and the piece itself within ten tolerances of the block) are buffered together by the
