@@ -58,4 +58,23 @@ LineString densified(const LineString& line, double spacing) {
   return dense;
 }
 
+Ring convexHull(std::vector<Vec2> points) {
+  std::sort(points.begin(), points.end(), lexicographicLess);
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  if (points.size() < 3) return points;
+  const auto turn = [](const Vec2& o, const Vec2& a, const Vec2& b) { return cross(a - o, b - o); };
+  Ring hull(2 * points.size());
+  size_t k = 0;
+  for (const Vec2& p : points) {
+    while (k >= 2 && turn(hull[k - 2], hull[k - 1], p) <= 0.0) --k;
+    hull[k++] = p;
+  }
+  for (size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && turn(hull[k - 2], hull[k - 1], points[i]) <= 0.0) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(k);  // the upper chain ends on the first point: the ring is closed
+  return hull;
+}
+
 }  // namespace urbanvec

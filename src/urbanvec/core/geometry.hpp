@@ -85,5 +85,9 @@ LineString densified(const LineString& line, double spacing);
 /// The first `keep` metres of a line from its start (the whole line when it is shorter, its first
 /// point alone when keep <= 0).
 LineString headOfLength(const LineString& line, double keep);
+/// Convex hull by Andrew's monotone chain: counter-clockwise from the lexicographically smallest
+/// point, without collinear points; closed (first point repeated) when the input has 3 or more
+/// distinct points (collinear ones give a, b, a), else those distinct points.
+Ring convexHull(std::vector<Vec2> points);
 
 }  // namespace urbanvec

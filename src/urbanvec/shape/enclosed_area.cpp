@@ -13,29 +13,11 @@ double turn(const Vec2& o, const Vec2& a, const Vec2& b) {
   return cross(a - o, b - o);
 }
 
-/// Andrew's monotone chain; counter-clockwise, without collinear points or a repeated end.
-std::vector<Vec2> convexHull(std::vector<Vec2> points) {
-  std::sort(points.begin(), points.end(), lexicographicLess);
-  points.erase(std::unique(points.begin(), points.end()), points.end());
-  if (points.size() < 3) return points;
-  std::vector<Vec2> hull(2 * points.size());
-  size_t k = 0;
-  for (const Vec2& p : points) {
-    while (k >= 2 && turn(hull[k - 2], hull[k - 1], p) <= 0.0) --k;
-    hull[k++] = p;
-  }
-  for (size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
-    while (k >= lower && turn(hull[k - 2], hull[k - 1], points[i]) <= 0.0) --k;
-    hull[k++] = points[i];
-  }
-  hull.resize(k - 1);
-  return hull;
-}
-
 }  // namespace
 
 double diameter(const std::vector<Vec2>& points) {
-  const std::vector<Vec2> hull = convexHull(points);
+  Ring hull = convexHull(points);
+  if (hull.size() > 2) hull.pop_back();  // the open ring: the antipodal walk wraps by index
   const size_t h = hull.size();
   if (h < 2) return 0.0;
   if (h == 2) return distance(hull[0], hull[1]);

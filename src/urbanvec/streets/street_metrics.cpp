@@ -20,24 +20,6 @@ double bearing(const Vec2& a, const Vec2& b) {
   return deg >= 360.0 ? deg - 360.0 : deg;
 }
 
-double convexHullArea(std::vector<Vec2> pts) {
-  std::sort(pts.begin(), pts.end(), lexicographicLess);
-  pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
-  if (pts.size() < 3) return 0.0;
-  std::vector<Vec2> hull(2 * pts.size());
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    while (k >= 2 && cross(hull[k - 1] - hull[k - 2], pts[i] - hull[k - 2]) <= 0) --k;
-    hull[k++] = pts[i];
-  }
-  for (std::size_t i = pts.size() - 1, t = k + 1; i-- > 0;) {
-    while (k >= t && cross(hull[k - 1] - hull[k - 2], pts[i] - hull[k - 2]) <= 0) --k;
-    hull[k++] = pts[i];
-  }
-  hull.resize(k);
-  return std::abs(signedArea(hull));
-}
-
 }  // namespace
 
 double orientationEntropy(const std::vector<double>& bearingsDegrees, int bins) {
@@ -138,7 +120,7 @@ StreetMetrics measureNetwork(const SimplifiedNetwork& net, const StreetMetricOpt
   std::sort(lengths.begin(), lengths.end());
   const std::size_t k = lengths.size();
   m.medianEdgeLength = k % 2 ? lengths[k / 2] : 0.5 * (lengths[k / 2 - 1] + lengths[k / 2]);
-  m.areaKm2 = (area ? urbanvec::area(*area) : convexHullArea(nodePoints)) / 1e6;
+  m.areaKm2 = (area ? urbanvec::area(*area) : std::abs(signedArea(convexHull(nodePoints)))) / 1e6;
   m.intersectionDensity = m.areaKm2 > 0.0 ? static_cast<double>(intersections) / m.areaKm2 : 0.0;
   return m;
 }

@@ -44,6 +44,15 @@ TEST(Geometry, HeadOfLengthKeepsTheFirstMetres) {
   EXPECT_EQ(headOfLength(l, -3), (LineString{{0, 0}}));
 }
 
+TEST(Geometry, ConvexHullIsClosedCounterClockwiseWithoutInnerOrCollinearPoints) {
+  // A square with an inner point, a point on an edge and a repeated corner.
+  const Ring hull = convexHull({{2, 2}, {0, 0}, {4, 0}, {4, 4}, {1, 1}, {2, 0}, {0, 4}, {4, 4}});
+  EXPECT_EQ(hull, (Ring{{0, 0}, {4, 0}, {4, 4}, {0, 4}, {0, 0}}));
+  EXPECT_DOUBLE_EQ(signedArea(hull), 16.0);
+  EXPECT_EQ(convexHull({{0, 0}, {1, 1}, {2, 2}}), (Ring{{0, 0}, {2, 2}, {0, 0}}));
+  EXPECT_EQ(convexHull({{3, 1}, {3, 1}}), (Ring{{3, 1}}));
+}
+
 TEST(LandUse, CodesAndNames) {
   EXPECT_EQ(static_cast<int>(LandUse::SecondaryRoad), 2);
   EXPECT_EQ(static_cast<int>(LandUse::PrimaryRoad), 3);
