@@ -175,6 +175,13 @@ app::CommandSpec spec() {
                   .withUnit("cells")
                   .atLeast(0)
                   .isAdvanced());
+  o.push_back(option("-junction-span", ValueType::Real, "<factor>",
+                     "Junctions joined by a road no longer than this many times the summed widths of that "
+                     "road and the widest other road at its ends form a cluster, rebuilt as the junctions "
+                     "its through roads' lines imply (B7; 0 = off).")
+                  .byDefault(app::numberText(d.throughRoads.junctionSpan))
+                  .atLeast(0)
+                  .isAdvanced());
   o.push_back(option("-straight-slack", ValueType::Real, "<cells>",
                      "A road is straight when its cells lie within the band of a digital straight line "
                      "plus this (B7).")
@@ -289,6 +296,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   options.throughRoads.pairAngle = args.real("-through-angle");
   options.throughRoads.slack = args.real("-straight-slack");
   options.throughRoads.fitReach = args.real("-through-fit-reach");
+  options.throughRoads.junctionSpan = args.real("-junction-span");
   options.cycles.maxCycleNodes = static_cast<int>(args.integer("-cycle-nodes"));
   options.intersections.deadEndAngle = args.real("-dead-end-angle");
   options.cleanIntersectionPatches = !args.flag("-no-patch-cleaning");

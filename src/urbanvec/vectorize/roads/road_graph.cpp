@@ -115,13 +115,13 @@ void updateIntersectionFlags(RoadGraph& graph) {
   }
 }
 
-std::vector<int> followChain(const RoadGraph& graph, int start, int next) {
+std::vector<int> followChain(const RoadGraph& graph, int start, int next, bool throughFlagged) {
   std::vector<int> chain;
   int prev = start, cur = next;
   while (true) {
     chain.push_back(cur);
     const RoadNode& n = graph.nodes[cur];
-    if (cur == start || n.intersection || n.links.size() != 2) break;
+    if (cur == start || (n.intersection && !throughFlagged) || n.links.size() != 2) break;
     const int after = n.links[0] == prev ? n.links[1] : n.links[0];
     prev = cur;
     cur = after;

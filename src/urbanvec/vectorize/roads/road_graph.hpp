@@ -63,8 +63,10 @@ double azimuth(const Vec2& a, const Vec2& b);
 void updateIntersectionFlags(RoadGraph& graph);
 
 /// The chain of nodes from `start` along its link to `next`, through nodes of degree 2, up to and
-/// including the first node that is an intersection, a dead end or `start` itself (a loop).
-std::vector<int> followChain(const RoadGraph& graph, int start, int next);
+/// including the first node that is an intersection, a dead end or `start` itself (a loop). With
+/// `throughFlagged`, degree-2 nodes flagged as intersections (A4.4: linked only to intersections) are
+/// walked through too: the chain ends only where the number of links is not 2.
+std::vector<int> followChain(const RoadGraph& graph, int start, int next, bool throughFlagged = false);
 
 /// Uniform-grid bucket index over node positions for "nearest node" and "nodes within r" queries
 /// in O(1) expected time per query (no O(n^2) searches on large grids).

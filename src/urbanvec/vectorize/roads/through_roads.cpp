@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 
 #include "urbanvec/core/segment_contact.hpp"
 #include "urbanvec/vectorize/roads/road_network.hpp"
@@ -62,6 +64,15 @@ struct Surroundings {
   double longestLink = 0.0;  ///< padded by how far nodes may move
   double coverQuery = 0.0;   ///< radius around a cell holding an end of every link within coverRadius
 };
+
+/// The length of the graph's longest link (pw).
+double longestLink(const RoadGraph& graph) {
+  double longest = 0.0;
+  for (const RoadNode& node : graph.nodes)
+    if (node.alive)
+      for (int q : node.links) longest = std::max(longest, distance(node.p, graph.nodes[q].p));
+  return longest;
+}
 
 /// The road cells within `radius` of the links of the moved nodes (cell indices, sorted).
 std::vector<std::int64_t> cellsNearLinks(const RoadGraph& graph, const Grid<std::uint8_t>& cells,
@@ -150,6 +161,7 @@ struct Arm {
   std::vector<Vec2> fitPlacements;
   bool fitted = false;
   Vec2 centre, direction;  ///< direction points away from the intersection
+  Vec2 origin;             ///< the intersection's placement
 };
 
 Arm buildArm(const RoadGraph& graph, int at, int next, const ThroughRoadOptions& options) {
@@ -169,6 +181,7 @@ Arm buildArm(const RoadGraph& graph, int at, int next, const ThroughRoadOptions&
     if (isChainEnd(graph, k)) break;
     arm.movable = arm.nodes.size();
   }
+  arm.origin = origin;
   std::vector<Vec2>& placements = arm.fitPlacements;
   for (int k : arm.nodes)
     if (distance(graph.nodes[k].placed, origin) >= options.innerRadius)
@@ -201,6 +214,69 @@ Arm buildArm(const RoadGraph& graph, int at, int next, const ThroughRoadOptions&
   }
   if (dot(arm.direction, arm.centre - origin) < 0) arm.direction = arm.direction * -1.0;
   return arm;
+}
+
+/// Two arms that continue each other, with the line fitted to both.
+struct ArmPair {
+  double cosine;
+  std::size_t a, b;
+  Vec2 centre, direction;
+};
+
+/// Pairs of fitted arms close to opposite, straightest first; each arm in one pair at most, and the
+/// pair only when the placements of both arms are consistent with one straight line. `paired` gets
+/// one flag per arm.
+std::vector<ArmPair> pairArms(const RoadGraph& graph, const std::vector<Arm>& arms,
+                              const ThroughRoadOptions& options, bool shortArms, std::vector<char>& paired) {
+  const double pairCos = -std::cos(options.pairAngle * M_PI / 180.0);
+  std::vector<ArmPair> candidates;
+  for (std::size_t a = 0; a < arms.size(); ++a)
+    for (std::size_t b = a + 1; b < arms.size(); ++b) {
+      if (!arms[a].fitted || !arms[b].fitted) continue;
+      const double c = dot(arms[a].direction, arms[b].direction);
+      if (c > pairCos) continue;
+      candidates.push_back({c, a, b, {}, {}});
+    }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const ArmPair& x, const ArmPair& y) { return x.cosine < y.cosine; });
+  paired.assign(arms.size(), 0);
+  std::vector<ArmPair> pairs;
+  std::vector<Vec2> placements;
+  for (ArmPair p : candidates) {
+    if (paired[p.a] || paired[p.b]) continue;
+    placements = arms[p.a].fitPlacements;
+    placements.insert(placements.end(), arms[p.b].fitPlacements.begin(), arms[p.b].fitPlacements.end());
+    fitLine(placements, p.centre, p.direction);
+    if (!consistentWithLine(placements, p.centre, p.direction, options.slack)) continue;
+    paired[p.a] = paired[p.b] = 1;
+    pairs.push_back(p);
+  }
+  if (!shortArms) return pairs;
+  // An arm too short to fit (a dead end a cell or two long, a road ending at the grid's edge) continues
+  // an unpaired fitted arm when it leaves on the other side and all its cells lie in that arm's line's
+  // band (the straightness rule).
+  for (std::size_t u = 0; u < arms.size(); ++u) {
+    if (paired[u] || arms[u].fitted || arms[u].nodes.empty()) continue;
+    std::vector<Vec2> own;
+    for (int k : arms[u].nodes) own.push_back(graph.nodes[k].placed);
+    const Vec2 away = own.back() - arms[u].origin;
+    if (length(away) == 0) continue;
+    // Its direction, a cell or two long, is that of the grid's axes: only its side counts.
+    double bestCos = 0.0;
+    std::size_t best = SIZE_MAX;
+    for (std::size_t f = 0; f < arms.size(); ++f) {
+      if (paired[f] || !arms[f].fitted) continue;
+      const double c = dot(arms[f].direction, away / length(away));
+      if (c < bestCos && consistentWithLine(own, arms[f].centre, arms[f].direction, options.slack)) {
+        bestCos = c;
+        best = f;
+      }
+    }
+    if (best == SIZE_MAX) continue;
+    paired[u] = paired[best] = 1;
+    pairs.push_back({bestCos, best, u, arms[best].centre, arms[best].direction});
+  }
+  return pairs;
 }
 
 /// The least-squares point of lines (centre, unit direction); false when they are (nearly) parallel.
@@ -245,35 +321,8 @@ void placeIntersection(RoadGraph& graph, int at, const ThroughRoadOptions& optio
   const std::vector<std::int32_t> links = node.links;
   std::vector<Arm> arms;
   for (int next : links) arms.push_back(buildArm(graph, at, next, options));
-  // Pairs of fitted arms close to opposite, straightest first; each arm in one pair at most, and the
-  // pair only when the placements of both arms are consistent with one straight line.
-  const double pairCos = -std::cos(options.pairAngle * M_PI / 180.0);
-  struct Pair {
-    double cosine;
-    std::size_t a, b;
-    Vec2 centre, direction;
-  };
-  std::vector<Pair> candidates;
-  for (std::size_t a = 0; a < arms.size(); ++a)
-    for (std::size_t b = a + 1; b < arms.size(); ++b) {
-      if (!arms[a].fitted || !arms[b].fitted) continue;
-      const double c = dot(arms[a].direction, arms[b].direction);
-      if (c > pairCos) continue;
-      candidates.push_back({c, a, b, {}, {}});
-    }
-  std::stable_sort(candidates.begin(), candidates.end(),
-                   [](const Pair& x, const Pair& y) { return x.cosine < y.cosine; });
-  std::vector<char> paired(arms.size(), 0);
-  std::vector<Pair> pairs;
-  for (Pair p : candidates) {
-    if (paired[p.a] || paired[p.b]) continue;
-    std::vector<Vec2> placements = arms[p.a].fitPlacements;
-    placements.insert(placements.end(), arms[p.b].fitPlacements.begin(), arms[p.b].fitPlacements.end());
-    fitLine(placements, p.centre, p.direction);
-    if (!consistentWithLine(placements, p.centre, p.direction, options.slack)) continue;
-    paired[p.a] = paired[p.b] = 1;
-    pairs.push_back(p);
-  }
+  std::vector<char> paired;
+  const std::vector<ArmPair> pairs = pairArms(graph, arms, options, false, paired);
   stats.pairs += pairs.size();
   if (pairs.empty()) return;
 
@@ -282,10 +331,10 @@ void placeIntersection(RoadGraph& graph, int at, const ThroughRoadOptions& optio
   Vec2 target = node.p;
   if (pairs.size() >= 2) {
     std::vector<std::pair<Vec2, Vec2>> lines;
-    for (const Pair& p : pairs) lines.push_back({p.centre, p.direction});
+    for (const ArmPair& p : pairs) lines.push_back({p.centre, p.direction});
     if (!leastSquaresCrossing(lines, target)) return;
   } else {
-    const Pair& p = pairs[0];
+    const ArmPair& p = pairs[0];
     double num = 0, den = 0;
     for (std::size_t s = 0; s < arms.size(); ++s) {
       if (paired[s] || !arms[s].fitted) continue;
@@ -379,6 +428,410 @@ void placeIntersection(RoadGraph& graph, int at, const ThroughRoadOptions& optio
   ++stats.nodesPlaced;
 }
 
+/// Width of a road in cells by its node type (CONVENTIONS.md: a primary is 2 cells wide, a secondary 1).
+double roadWidth(NodeType type) {
+  return type == NodeType::Primary ? 2.0 : 1.0;
+}
+
+/// A line of a junction cluster: the fitted line of a pair of arms that continue each other (a
+/// through road), or of a single fitted arm (a stem).
+struct ClusterLine {
+  Vec2 centre, direction;
+  bool through = true;
+  bool dropped = false;  ///< a stem that meets no through road near the cluster
+};
+
+/// A junction the cluster's lines imply: where two through roads cross, or a stem meets a through road.
+struct ClusterPoint {
+  Vec2 p;
+  std::vector<std::size_t> lines;
+};
+
+/// One cluster of junctions (sorted ids) joined by short chains (ThroughRoadOptions::junctionSpan; the
+/// chains' inner nodes sorted in `inner`, their first links from either end sorted in `innerStarts`),
+/// replaced by the junctions its arms' fitted lines imply: the crossings of its through roads and
+/// where its stems meet them, each within `clusterReach` of a junction of the cluster. Returns true
+/// when the cluster was rebuilt.
+bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, const std::vector<int>& inner,
+                        const std::vector<std::pair<int, int>>& innerStarts, double clusterReach,
+                        const ThroughRoadOptions& options, const Surroundings& around,
+                        ThroughRoadStats& stats) {
+  auto inCluster = [&](int k) {
+    return std::binary_search(junctions.begin(), junctions.end(), k) ||
+           std::binary_search(inner.begin(), inner.end(), k);
+  };
+  // The arms: every road leaving a junction of the cluster other than by its inner chains.
+  std::vector<Arm> arms;
+  std::vector<int> attach, first;  // per arm: its junction, and its first node outside the cluster
+  std::vector<int> perimeter;      // perimeter nodes linked to the cluster's junctions
+  for (int j : junctions)
+    for (int next : graph.nodes[j].links) {
+      if (!isRoad(graph.nodes[next])) {
+        perimeter.push_back(next);  // a perimeter line: relinked to the nearest junction implied
+        continue;
+      }
+      if (std::binary_search(innerStarts.begin(), innerStarts.end(),
+                             std::make_pair(j, static_cast<int>(next))))
+        continue;
+      if (inCluster(next)) return false;  // a long road between two of its junctions: left as it is
+      arms.push_back(buildArm(graph, j, next, options));
+      attach.push_back(j);
+      first.push_back(next);
+    }
+  if (arms.size() < 3) return false;
+  std::vector<char> paired;
+  const std::vector<ArmPair> pairs = pairArms(graph, arms, options, true, paired);
+  if (pairs.empty()) return false;
+  std::vector<ClusterLine> lines;
+  std::vector<std::size_t> lineOf(arms.size(), SIZE_MAX);
+  for (const ArmPair& p : pairs) {
+    lineOf[p.a] = lineOf[p.b] = lines.size();
+    lines.push_back({p.centre, p.direction, true});
+  }
+  for (std::size_t a = 0; a < arms.size(); ++a)
+    if (!paired[a] && arms[a].fitted) {
+      lineOf[a] = lines.size();
+      lines.push_back({arms[a].centre, arms[a].direction, false});
+    }
+  // Where the lines meet near the cluster: through roads crossing each other, and each stem where it
+  // first meets a through road coming in from its own cells.
+  auto nearCluster = [&](const Vec2& p) {
+    for (int j : junctions)
+      if (distance(p, graph.nodes[j].placed) <= clusterReach) return true;
+    return false;
+  };
+  std::vector<ClusterPoint> points;
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    for (std::size_t k = i + 1; k < lines.size() && lines[i].through; ++k) {
+      if (!lines[k].through) continue;
+      Vec2 x;
+      if (leastSquaresCrossing({{lines[i].centre, lines[i].direction}, {lines[k].centre, lines[k].direction}},
+                               x) &&
+          nearCluster(x))
+        points.push_back({x, {i, k}});
+    }
+  for (std::size_t s = 0; s < lines.size(); ++s) {
+    if (lines[s].through) continue;
+    double best = std::numeric_limits<double>::max();
+    ClusterPoint meet;
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+      Vec2 x;
+      if (!lines[i].through ||
+          !leastSquaresCrossing(
+              {{lines[s].centre, lines[s].direction}, {lines[i].centre, lines[i].direction}}, x))
+        continue;
+      const double t = dot(lines[s].centre - x, lines[s].direction);  // from the crossing out along the stem
+      if (t > 0 && t < best) {
+        best = t;
+        meet = {x, {s, i}};
+      }
+    }
+    if (best == std::numeric_limits<double>::max() || !nearCluster(meet.p)) {
+      lines[s].dropped = true;  // meets no through road here: its arm is attached as one without a line
+      continue;
+    }
+    points.push_back(meet);
+  }
+  // Two crossings are one junction, at the least-squares crossing of all their lines, when that point
+  // lies within every one of those lines' band (the straightness rule): no road bends at it.
+  for (bool merged = true; merged;) {
+    merged = false;
+    for (std::size_t i = 0; i < points.size() && !merged; ++i)
+      for (std::size_t k = i + 1; k < points.size() && !merged; ++k) {
+        std::vector<std::size_t> both = points[i].lines;
+        both.insert(both.end(), points[k].lines.begin(), points[k].lines.end());
+        std::sort(both.begin(), both.end());
+        both.erase(std::unique(both.begin(), both.end()), both.end());
+        std::vector<std::pair<Vec2, Vec2>> fit;
+        for (std::size_t l : both) fit.push_back({lines[l].centre, lines[l].direction});
+        Vec2 x = (points[i].p + points[k].p) * 0.5;
+        leastSquaresCrossing(fit, x);
+        bool onAll = true;
+        for (std::size_t l : both)
+          onAll = onAll && std::fabs(cross(lines[l].direction, x - lines[l].centre)) <=
+                               digitalLineBand(lines[l].direction) + options.slack + kPlacementRounding;
+        if (!onAll) continue;
+        points[i] = {x, both};
+        points.erase(points.begin() + static_cast<std::ptrdiff_t>(k));
+        merged = true;
+      }
+  }
+  if (points.empty()) return false;
+  // Every through road and stem must meet the others here, and every junction lie on the cells.
+  for (std::size_t a = 0; a < arms.size(); ++a)
+    if (lineOf[a] != SIZE_MAX && lines[lineOf[a]].dropped) lineOf[a] = SIZE_MAX;
+  for (std::size_t l = 0; l < lines.size(); ++l) {
+    if (lines[l].dropped) continue;
+    bool on = false;
+    for (const ClusterPoint& q : points)
+      on = on || std::find(q.lines.begin(), q.lines.end(), l) != q.lines.end();
+    if (!on) return false;
+  }
+  for (const ClusterPoint& q : points) {
+    const bool onCells = options.cells ? nearRoadCell(*options.cells, q.p, options.reach) : nearCluster(q.p);
+    if (!onCells) return false;
+  }
+  // The new links: consecutive junctions along each through road, and each arm to the junction of its
+  // line at its own side (the nearest junction for an arm without a line).
+  std::vector<std::pair<std::size_t, std::size_t>> between;
+  std::vector<std::size_t> armPoint(arms.size(), SIZE_MAX);
+  for (std::size_t l = 0; l < lines.size(); ++l) {
+    std::vector<std::pair<double, std::size_t>> along;
+    for (std::size_t q = 0; q < points.size(); ++q)
+      if (std::find(points[q].lines.begin(), points[q].lines.end(), l) != points[q].lines.end())
+        along.push_back({dot(points[q].p - lines[l].centre, lines[l].direction), q});
+    std::sort(along.begin(), along.end());
+    for (std::size_t k = 1; k < along.size(); ++k) between.push_back({along[k - 1].second, along[k].second});
+    for (std::size_t a = 0; a < arms.size(); ++a)
+      if (lineOf[a] == l)
+        armPoint[a] =
+            dot(arms[a].direction, lines[l].direction) > 0 ? along.back().second : along.front().second;
+  }
+  for (std::size_t a = 0; a < arms.size(); ++a) {
+    if (armPoint[a] != SIZE_MAX) continue;
+    double best = std::numeric_limits<double>::max();
+    for (std::size_t q = 0; q < points.size(); ++q)
+      if (distance(points[q].p, graph.nodes[first[a]].p) < best) {
+        best = distance(points[q].p, graph.nodes[first[a]].p);
+        armPoint[a] = q;
+      }
+  }
+  // The first node of each arm left in place: past its window, or its next end.
+  std::vector<int> anchors(arms.size(), -1);
+  for (std::size_t a = 0; a < arms.size(); ++a)
+    if (arms[a].movable > 0) {
+      const std::vector<int> chain = followChain(graph, attach[a], first[a]);
+      if (arms[a].movable < chain.size() && chain[arms[a].movable] != attach[a])
+        anchors[a] = chain[arms[a].movable];
+    }
+  // Rebuild, keeping a copy of every node whose links change to undo it.
+  std::vector<int> touched = junctions;
+  touched.insert(touched.end(), inner.begin(), inner.end());
+  touched.insert(touched.end(), first.begin(), first.end());
+  touched.insert(touched.end(), perimeter.begin(), perimeter.end());
+  for (const Arm& arm : arms) touched.insert(touched.end(), arm.nodes.begin(), arm.nodes.end());
+  std::sort(touched.begin(), touched.end());
+  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  std::vector<RoadNode> saved;
+  for (int k : touched) saved.push_back(graph.nodes[k]);
+  const std::vector<std::int64_t> covered =
+      options.cells ? cellsNearLinks(graph, *options.cells, touched, options.coverRadius)
+                    : std::vector<std::int64_t>();
+  for (int k : inner) graph.removeNode(k);
+  for (int j : junctions) {
+    const std::vector<std::int32_t> links = graph.nodes[j].links;
+    for (int l : links) graph.unlink(j, l);
+  }
+  // Each junction implied takes the id of the nearest junction of the cluster not yet taken; when the
+  // lines imply more junctions than the cluster had, the others are new nodes.
+  std::vector<int> ids(points.size(), -1);
+  std::vector<char> taken(junctions.size(), 0);
+  std::vector<int> added;
+  for (std::size_t q = 0; q < points.size(); ++q) {
+    double best = std::numeric_limits<double>::max();
+    std::size_t pick = SIZE_MAX;
+    for (std::size_t k = 0; k < junctions.size(); ++k)
+      if (!taken[k] && distance(graph.nodes[junctions[k]].p, points[q].p) < best) {
+        best = distance(graph.nodes[junctions[k]].p, points[q].p);
+        pick = k;
+      }
+    if (pick != SIZE_MAX) {
+      taken[pick] = 1;
+      ids[q] = junctions[pick];
+    } else {
+      ids[q] = graph.addNode(points[q].p, NodeType::Secondary);
+      added.push_back(ids[q]);
+    }
+    RoadNode& node = graph.nodes[ids[q]];
+    node.p = node.placed = points[q].p;
+    node.intersection = true;
+  }
+  for (std::size_t k = 0; k < junctions.size(); ++k)
+    if (!taken[k]) graph.removeNode(junctions[k]);
+  for (const auto& [q, r] : between) graph.link(ids[q], ids[r]);
+  // Each arm with a line joins its junction straight: its approach nodes within the window go onto the
+  // segment from the junction to the arm's first node beyond them (as B7's approaches, rule 5) while
+  // they stay within reach of their cells, and those behind the junction (the cluster's junction moved
+  // past them) go.
+  std::vector<int> moved = ids;
+  std::vector<Vec2> cells;
+  for (std::size_t a = 0; a < arms.size(); ++a) {
+    const int at = ids[armPoint[a]];
+    const Arm& arm = arms[a];
+    std::size_t k = 0;
+    if (lineOf[a] != SIZE_MAX && arm.movable > 0 && arm.nodes[0] == first[a] && anchors[a] >= 0) {
+      const Vec2 x = points[armPoint[a]].p;
+      const Vec2 ab = graph.nodes[anchors[a]].p - x;
+      const double len2 = dot(ab, ab);
+      if (len2 > 0) {
+        while (k < arm.movable && dot(graph.nodes[arm.nodes[k]].p - x, ab) <= 0) ++k;
+        if (k == arm.movable && arm.nodes.size() == arm.movable) k = 0;  // nothing left to link to
+        for (std::size_t j = 0; j < k; ++j) graph.removeNode(arm.nodes[j]);
+        // Only an approach whose cells are straight is drawn straight (B7's rule 5 with
+        // straightApproachesOnly): the cells its line was fitted on and its anchor's (unless the anchor is
+        // another junction, whose cells bulge) pass the straight-road rule between the junction and the
+        // anchor, so a road curving away beyond the window keeps its curve.
+        cells = arm.fitPlacements;
+        if (graph.nodes[anchors[a]].links.size() == 2) cells.push_back(graph.nodes[anchors[a]].placed);
+        const bool straight =
+            !options.straightApproachesOnly || straightChain(cells, x, graph.nodes[anchors[a]].p, options);
+        double along = 0.0;
+        for (std::size_t j = k; j < arm.movable && straight; ++j) {
+          RoadNode& node = graph.nodes[arm.nodes[j]];
+          along = std::clamp(dot(node.p - x, ab) / len2, along, 1.0);
+          const Vec2 onLine = x + ab * along;
+          const bool inReach =
+              options.cells ? distance(onLine, node.placed) <= placementReach(node.type, options.reach) &&
+                                  nearRoadCell(*options.cells, onLine, options.reach)
+                            : distance(onLine, node.placed) <= smoothingShiftLimit(node.type, options.reach);
+          if (!inReach) break;
+          node.p = onLine;
+        }
+        for (std::size_t j = k; j < arm.nodes.size(); ++j) moved.push_back(arm.nodes[j]);
+      }
+    }
+    graph.link(at, k == 0 ? first[a] : arm.nodes[k]);
+  }
+  for (int e : perimeter) {
+    std::size_t nearest = 0;
+    for (std::size_t q = 1; q < points.size(); ++q)
+      if (distance(points[q].p, graph.nodes[e].p) < distance(points[nearest].p, graph.nodes[e].p))
+        nearest = q;
+    graph.link(ids[nearest], e);
+  }
+  for (std::size_t q = 0; q < points.size(); ++q) {
+    bool primary = false;
+    for (int l : graph.nodes[ids[q]].links) primary = primary || (graph.nodes[l].type == NodeType::Primary);
+    graph.nodes[ids[q]].type = primary ? NodeType::Primary : NodeType::Secondary;
+  }
+  // The links between the junctions run on road cells, and nothing crosses or is uncovered.
+  bool offCells = false;
+  for (const auto& [q, r] : between) {
+    const Vec2 a = points[q].p, b = points[r].p;
+    const int steps = static_cast<int>(std::ceil(distance(a, b) / 0.25));
+    for (int s = 1; s < steps && options.cells && !offCells; ++s)
+      offCells = !nearRoadCell(*options.cells, a + (b - a) * (static_cast<double>(s) / steps), options.reach);
+  }
+  if (offCells || rejectMoves(graph, options, around, moved, covered, stats)) {
+    for (std::size_t k = 0; k < touched.size(); ++k) graph.nodes[touched[k]] = saved[k];
+    for (int k : added) {
+      graph.nodes[k].links.clear();
+      graph.nodes[k].alive = false;
+    }
+    return false;
+  }
+  ++stats.clustersConsolidated;
+  stats.junctionsRemoved +=
+      junctions.size() - std::min(junctions.size(), points.size());  // (net, per cluster)
+  return true;
+}
+
+/// Finds the clusters of junctions (road nodes of three or more links) joined by short chains
+/// (ThroughRoadOptions::junctionSpan) and consolidates each (consolidateCluster), in node order.
+void consolidateJunctions(RoadGraph& graph, const ThroughRoadOptions& options, const Surroundings& around,
+                          ThroughRoadStats& stats) {
+  const std::size_t n = graph.nodes.size();
+  auto junction = [&](int k) { return isRoad(graph.nodes[k]) && graph.nodes[k].links.size() >= 3; };
+  std::vector<int> parent(n);
+  for (std::size_t i = 0; i < n; ++i) parent[i] = static_cast<int>(i);
+  auto root = [&](int k) {
+    while (parent[k] != k) k = parent[k] = parent[parent[k]];
+    return k;
+  };
+  std::vector<std::pair<int, int>> innerOf;  // (node, a junction of its chain)
+  std::vector<std::pair<int, int>> starts;   // the first links of the inner chains, from both ends
+  std::vector<char> joined(n, 0);            // junctions with an inner chain
+  std::vector<double> extent(n, 0.0);        // the longest inner chain at each junction
+  struct ShortChain {
+    double length;
+    int from, to, next;
+    std::vector<int> chain;
+  };
+  std::vector<ShortChain> candidates;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!junction(static_cast<int>(i))) continue;
+    for (int next : graph.nodes[i].links) {
+      const std::vector<int> chain = followChain(graph, static_cast<int>(i), next, true);
+      const int end = chain.back();
+      if (!junction(end) || end < static_cast<int>(i)) continue;  // each chain once (loops from i)
+      bool road = true;
+      double length = 0.0;
+      int prev = static_cast<int>(i);
+      for (int k : chain) {
+        road = road && isRoad(graph.nodes[k]);
+        length += distance(graph.nodes[prev].p, graph.nodes[k].p);
+        prev = k;
+      }
+      // Short: no longer than the stretch its road and the widest other road at its ends share when
+      // they cross at the through-angle.
+      const int last = chain.size() > 1 ? chain[chain.size() - 2] : static_cast<int>(i);
+      const double own = roadWidth(graph.nodes[chain.size() > 1 ? chain[0] : static_cast<int>(i)].type);
+      double other = 0.0;
+      for (int l : graph.nodes[i].links)
+        if (l != next && !(end == static_cast<int>(i) && l == last))
+          other = std::max(other, roadWidth(graph.nodes[l].type));
+      for (int l : graph.nodes[end].links)
+        if (l != last && !(end == static_cast<int>(i) && l == next))
+          other = std::max(other, roadWidth(graph.nodes[l].type));
+      if (!road || length > options.junctionSpan * (own + other)) continue;
+      candidates.push_back({length, static_cast<int>(i), end, next, chain});
+    }
+  }
+  // Shortest chains first; two clusters join only while every two of their junctions stay within the
+  // longest stretch two roads can share (two primaries), so ordinary junctions one short street apart
+  // do not grow into one cluster.
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const ShortChain& x, const ShortChain& y) { return x.length < y.length; });
+  std::vector<std::vector<int>> group(n);
+  const double diameter = options.junctionSpan * 2.0 * roadWidth(NodeType::Primary);
+  for (const ShortChain& c : candidates) {
+    const int ra = root(c.from), rb = root(c.to);
+    if (group[ra].empty()) group[ra].push_back(c.from);
+    if (group[rb].empty()) group[rb].push_back(c.to);
+    if (ra != rb) {
+      bool compact = true;
+      for (int a : group[ra])
+        for (int b : group[rb])
+          compact = compact && distance(graph.nodes[a].placed, graph.nodes[b].placed) <= diameter;
+      if (!compact) continue;
+      parent[ra] = rb;
+      group[rb].insert(group[rb].end(), group[ra].begin(), group[ra].end());
+      group[ra].clear();
+    }
+    const int i = c.from, end = c.to;
+    const std::vector<int>& chain = c.chain;
+    extent[i] = std::max(extent[i], c.length);
+    extent[end] = std::max(extent[end], c.length);
+    joined[i] = joined[end] = 1;
+    starts.push_back({i, c.next});
+    starts.push_back({end, chain.size() > 1 ? chain[chain.size() - 2] : i});
+    for (std::size_t k = 0; k + 1 < chain.size(); ++k) innerOf.push_back({chain[k], end});
+  }
+  // Members of every cluster, by root.
+  std::vector<std::vector<int>> members(n), inners(n);
+  std::vector<std::vector<std::pair<int, int>>> innerStarts(n);
+  for (const auto& s : starts) innerStarts[root(s.first)].push_back(s);
+  std::vector<double> reach(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i)
+    if (joined[i]) {
+      const int r = root(static_cast<int>(i));
+      members[r].push_back(static_cast<int>(i));
+      reach[r] = std::max(reach[r], extent[i]);
+    }
+  for (const auto& [k, j] : innerOf) inners[root(j)].push_back(k);
+  for (std::size_t r = 0; r < n; ++r) {
+    if (members[r].empty()) continue;
+    std::vector<int>& inner = inners[r];
+    std::sort(inner.begin(), inner.end());
+    inner.erase(std::unique(inner.begin(), inner.end()), inner.end());
+    ++stats.clusters;
+    std::sort(innerStarts[r].begin(), innerStarts[r].end());
+    // The lines meet within the cluster's longest inner chain, or B1's window, of its junctions.
+    consolidateCluster(graph, members[r], inner, innerStarts[r], std::max(reach[r], options.window), options,
+                       around, stats);
+  }
+}
+
 }  // namespace
 
 bool consistentWithSegment(const std::vector<Vec2>& placements, const Vec2& a, const Vec2& b, double slack) {
@@ -409,13 +862,21 @@ ThroughRoadStats straightenThroughRoads(RoadGraph& graph, const ThroughRoadOptio
     return stats;
   }
   updateIntersectionFlags(graph);
+  if (options.junctionSpan > 0) {
+    // Junction clusters first, with their own index: the rest of the stage sees the junctions they leave.
+    const NodeIndex clusterIndex(graph, 4.0);
+    Surroundings around{clusterIndex, longestLink(graph)};
+    // A rebuilt cluster's links span it, and its junctions move within it.
+    around.longestLink += 2.0 * options.junctionSpan * 2.0 * roadWidth(NodeType::Primary);
+    around.coverQuery = around.longestLink + options.coverRadius;
+    consolidateJunctions(graph, options, around, stats);
+    graph.compact();
+    updateIntersectionFlags(graph);
+    graph.sortLinksClockwise();
+  }
   const std::size_t n = graph.nodes.size();
   const NodeIndex index(graph, 4.0);
-  Surroundings around{index};
-  for (const RoadNode& node : graph.nodes)
-    if (node.alive)
-      for (int q : node.links)
-        around.longestLink = std::max(around.longestLink, distance(node.p, graph.nodes[q].p));
+  Surroundings around{index, longestLink(graph)};
   // Moves only shorten or keep links near the window's size; a link within coverRadius of a cell has
   // an end within coverRadius + its length of it.
   around.coverQuery = around.longestLink + 2.0 * options.window + options.coverRadius;

@@ -1,7 +1,10 @@
 // Stage B7 (through roads and straight roads, issue 20) on hand-made graphs with known answers.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "urbanvec/vectorize/roads/through_roads.hpp"
 
@@ -217,4 +220,156 @@ TEST(ThroughRoads, TJunctionStemMeetsTheThroughRoadAtItsOwnAngleWithoutAHook) {
   EXPECT_NEAR(g.nodes[centre].p.y, 0.0, 1e-9);
   EXPECT_NEAR(g.nodes[centre].p.x, 0.0, 1e-9);
   EXPECT_LT(largestTurn(g, stemIds), 1.0);
+}
+
+namespace {
+
+/// The alive road nodes with three or more links.
+std::vector<int> junctions(const RoadGraph& g) {
+  std::vector<int> out;
+  for (std::size_t i = 0; i < g.nodes.size(); ++i)
+    if (g.nodes[i].alive && g.nodes[i].links.size() >= 3) out.push_back(static_cast<int>(i));
+  return out;
+}
+
+/// The nodes of the road from `from` through `next` and on through nodes of two links.
+std::vector<int> road(const RoadGraph& g, int from, int next) {
+  std::vector<int> ids{from};
+  for (int k : followChain(g, from, next)) ids.push_back(k);
+  return ids;
+}
+
+}  // namespace
+
+TEST(JunctionClusters, TwoPrimariesSharingCellsAtAShallowCrossingBecomeOneCrossing) {
+  // Two primary roads cross at (0, 0) at 27 degrees: one along y = 0, one along (cos 27, sin 27). Their
+  // bands overlap for several cells, so the graph has two Y-junctions, A at (-3, 0) and B at (3, 0),
+  // joined by a shared chain along y = 0, each holding one arm of either road.
+  const Vec2 d(std::cos(27 * M_PI / 180), std::sin(27 * M_PI / 180));
+  RoadGraph g;
+  const int a = g.addNode({-3, 0}, NodeType::Primary), b = g.addNode({3, 0}, NodeType::Primary);
+  path(g, {{-2, 0}, {-1, 0}, {0, 0}, {1, 0}, {2, 0}}, a);
+  g.link(static_cast<int>(g.nodes.size()) - 1, b);
+  std::vector<Vec2> west, east, southWest, northEast;
+  for (int k = 4; k <= 12; ++k) {
+    west.push_back({-static_cast<double>(k), 0});
+    east.push_back({static_cast<double>(k), 0});
+    southWest.push_back(d * -static_cast<double>(k));
+    northEast.push_back(d * static_cast<double>(k));
+  }
+  path(g, west, a);
+  path(g, southWest, a);
+  path(g, east, b);
+  path(g, northEast, b);
+  for (RoadNode& n : g.nodes) n.type = NodeType::Primary;
+  g.sortLinksClockwise();
+
+  RoadGraph off = g;
+  ThroughRoadOptions noClusters;
+  noClusters.junctionSpan = 0;
+  const ThroughRoadStats kept = straightenThroughRoads(off, noClusters);
+  EXPECT_EQ(kept.clustersConsolidated, 0u);
+  EXPECT_EQ(junctions(off).size(), 2u);
+
+  const ThroughRoadStats s = straightenThroughRoads(g, {});
+  EXPECT_EQ(s.clusters, 1u);
+  EXPECT_EQ(s.clustersConsolidated, 1u);
+  EXPECT_EQ(s.junctionsRemoved, 1u);
+  const std::vector<int> left = junctions(g);
+  ASSERT_EQ(left.size(), 1u);
+  const int x = left[0];
+  EXPECT_NEAR(g.nodes[x].p.x, 0.0, 1e-6);
+  EXPECT_NEAR(g.nodes[x].p.y, 0.0, 1e-6);
+  EXPECT_EQ(g.nodes[x].links.size(), 4u);
+  // Both roads run straight through the one crossing: each of its four arms lies wholly on one of the
+  // two lines, two arms on each (ids are renumbered by the stage, so the arms are found from the node).
+  int onFirst = 0, onSecond = 0;
+  for (int q : g.nodes[x].links) {
+    bool first = true, second = true;
+    for (int k : road(g, x, q)) {
+      first = first && std::fabs(g.nodes[k].p.y) < 1e-6;
+      second = second && std::fabs(cross(d, g.nodes[k].p)) < 1e-6;
+    }
+    onFirst += first;
+    onSecond += second;
+    EXPECT_GE(road(g, x, q).size(), 9u);  // the arm reaches its far end (12 pw)
+  }
+  EXPECT_EQ(onFirst, 2);
+  EXPECT_EQ(onSecond, 2);
+}
+
+TEST(JunctionClusters, ALoopInsideACrossingGoesAndTheRoadsRunStraightThroughIt) {
+  // A north-south and an east-west street crossing at (0, 0), whose cells made a small ring of four
+  // junctions around the crossing, (0, 1), (1, 0), (0, -1), (-1, 0), each holding one street's arm.
+  RoadGraph g;
+  const std::vector<Vec2> dirs{{0, 1}, {1, 0}, {0, -1}, {-1, 0}};
+  std::vector<int> ring;
+  for (const Vec2& d : dirs) ring.push_back(g.addNode(d, NodeType::Secondary));
+  for (std::size_t k = 0; k < ring.size(); ++k) g.link(ring[k], ring[(k + 1) % ring.size()]);
+  for (std::size_t k = 0; k < ring.size(); ++k) {
+    std::vector<Vec2> points;
+    for (int t = 2; t <= 9; ++t) points.push_back(dirs[k] * static_cast<double>(t));
+    path(g, points, ring[k]);
+  }
+  g.sortLinksClockwise();
+
+  RoadGraph off = g;
+  ThroughRoadOptions noClusters;
+  noClusters.junctionSpan = 0;
+  straightenThroughRoads(off, noClusters);
+  EXPECT_EQ(junctions(off).size(), 4u);
+
+  const ThroughRoadStats s = straightenThroughRoads(g, {});
+  EXPECT_EQ(s.clustersConsolidated, 1u);
+  const std::vector<int> left = junctions(g);
+  ASSERT_EQ(left.size(), 1u);
+  EXPECT_NEAR(g.nodes[left[0]].p.x, 0.0, 1e-6);
+  EXPECT_NEAR(g.nodes[left[0]].p.y, 0.0, 1e-6);
+  EXPECT_EQ(g.nodes[left[0]].links.size(), 4u);
+  // Each arm runs straight on its axis from the crossing (ids are renumbered by the stage).
+  int axes = 0;
+  for (int q : g.nodes[left[0]].links) {
+    bool onAxis = true;
+    const std::vector<int> arm = road(g, left[0], q);
+    for (int k : arm) onAxis = onAxis && std::fabs(g.nodes[k].p.x * g.nodes[k].p.y) < 1e-9;
+    axes += onAxis && arm.size() >= 8;
+  }
+  EXPECT_EQ(axes, 4);
+  // No loop is left: every other node has two links or ends a street.
+  for (const RoadNode& n : g.nodes)
+    if (n.alive && &n != &g.nodes[left[0]]) EXPECT_LE(n.links.size(), 2u);
+}
+
+TEST(JunctionClusters, JunctionsTheLinesKeepApartStayApart) {
+  // A street along y = 0 with a stem north at x = -2 and a stem south at x = 2: a jog of two
+  // T-junctions 4 pw apart, which the cells say are two junctions (the stems' lines are 4 pw apart, far
+  // outside their bands). They form a cluster, and the rebuild keeps both where the lines cross.
+  RoadGraph g;
+  const int a = g.addNode({-2, 0.3}, NodeType::Secondary), b = g.addNode({2, -0.3}, NodeType::Secondary);
+  path(g, {{-1, 0}, {0, 0}, {1, 0}}, a);
+  g.link(static_cast<int>(g.nodes.size()) - 1, b);
+  std::vector<Vec2> west, east, north, south;
+  for (int k = 1; k <= 8; ++k) {
+    west.push_back({-2.0 - k, 0});
+    east.push_back({2.0 + k, 0});
+    north.push_back({-2, static_cast<double>(k)});
+    south.push_back({2, -static_cast<double>(k)});
+  }
+  for (const auto& [from, points] :
+       {std::pair<int, std::vector<Vec2>>{a, west}, {a, north}, {b, east}, {b, south}})
+    path(g, points, from);
+  for (int k : {a, b}) g.nodes[k].placed = {g.nodes[k].p.x, 0};
+  g.sortLinksClockwise();
+  const ThroughRoadStats s = straightenThroughRoads(g, {});
+  EXPECT_EQ(s.clusters, 1u);
+  const std::vector<int> left = junctions(g);
+  ASSERT_EQ(left.size(), 2u);
+  std::vector<double> xs;
+  for (int k : left) {
+    EXPECT_NEAR(g.nodes[k].p.y, 0.0, 1e-6);
+    xs.push_back(g.nodes[k].p.x);
+  }
+  std::sort(xs.begin(), xs.end());
+  EXPECT_NEAR(xs[0], -2.0, 1e-6);
+  EXPECT_NEAR(xs[1], 2.0, 1e-6);
 }
