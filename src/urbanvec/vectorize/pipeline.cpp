@@ -216,6 +216,7 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
   });
   run("B2", "road smoothing", 0.05, true, [&](const Progress& p) {
     RoadSmoothingOptions smoothing = options.roadSmoothing;
+    smoothing.threads = options.city.parcels.threads;  // one thread setting for every parallel stage
     if (options.keepRoadCellsCovered) smoothing.coverCells = &result.cells;
     const RoadSmoothingStats s = smoothRoads(graph, smoothing, p);
     return counts(s.nodesMoved, " nodes smoothed, ", s.intersectionsMoved, " intersections re-straightened");
@@ -248,12 +249,14 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
   });
   run("B6", "curve smoothing", 0.12, true, [&](const Progress& p) {
     CurveSmoothingOptions curves = options.curves;
+    curves.threads = options.city.parcels.threads;
     if (options.keepRoadCellsCovered) curves.coverCells = &result.cells;
     const CurveSmoothingStats s = smoothCurves(graph, curves, p);
     return counts(s.bends, " bends, ", s.nodesInserted, " nodes inserted, ", s.passes, " passes");
   });
   run("B7", "through roads", 0.03, true, [&](const Progress& p) {
     ThroughRoadOptions through = options.throughRoads;
+    through.threads = options.city.parcels.threads;
     if (options.keepRoadCellsCovered) {
       through.cells = &result.cells;
       through.coverRadius = options.curves.coverRadius;

@@ -74,6 +74,9 @@ struct ThroughRoadOptions {
   /// roads between ends off their line"): Monaco 54 instead of 52 of its 72 matchable blocks, distances
   /// closer on both samples.
   bool straightApproachesOnly = true;
+  /// Worker threads (0 = all cores). Does not change the output: the moves are made speculatively on
+  /// each thread's copy of the graph and committed in node order (SpeculativeMoves).
+  int threads = 0;
 };
 
 struct ThroughRoadStats {
