@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "urbanvec/core/error.hpp"
+#include "urbanvec/core/parallel.hpp"
 #include "urbanvec/vectorize/roads/road_checks.hpp"
 #include "urbanvec/vectorize/roads/road_output.hpp"
 
@@ -229,6 +230,7 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
   });
   run("B4", "cycle removal", 0.15, true, [&](const Progress& p) {
     CycleRemovalOptions cycles = options.cycles;
+    cycles.threads = options.city.parcels.threads;
     if (options.keepDevelopedCycles || result.roadsKept) cycles.landUse = &result.cells;
     cycles.keepLandCycles = result.roadsKept;
     CycleRemovalStats s = removeShortCycles(graph, cycles, p);
@@ -276,14 +278,23 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
       CycleRemovalOptions degenerate;
       degenerate.maxCycleNodes = std::numeric_limits<int>::max();
       degenerate.maxFaceArea = 1e-4;
+      degenerate.threads = options.city.parcels.threads;
       removeShortCycles(graph, degenerate);
       noded += nodeCrossingsAndContractTinyLinks(graph);
     }
     reportProgress(p, 0.5, "road output");
-    result.network = buildRoadNetwork(graph, options.outputSimplification);
+    // The simplified network and, when it is simplified, the exact one, side by side.
+    const bool simplified = options.outputSimplification > 0;
+    RoadNetwork exact;
+    runParallel(workerCount(options.city.parcels.threads), simplified ? 2 : 1,
+                [&](std::size_t k, std::size_t) {
+                  if (k == 0)
+                    result.network = buildRoadNetwork(graph, options.outputSimplification);
+                  else
+                    exact = buildRoadNetwork(graph, 0.0);
+                });
     std::size_t restored = 0, uncovering = 0;
-    if (options.outputSimplification > 0) {
-      const RoadNetwork exact = buildRoadNetwork(graph, 0.0);
+    if (simplified) {
       uncovering = restoreUncoveringSegments(result.network, exact, input.landUse, result.cells,
                                              options.outputSimplification);
       restored = restoreTouchingSegments(result.network, exact);

@@ -67,7 +67,7 @@ CurveSmoothingStats smoothCurves(RoadGraph& graph, const CurveSmoothingOptions& 
     ++stats.passes;
     reportProgress(progress, 0.2 + 0.8 * (pass + 1) / options.passes, "curve smoothing");
   }
-  graph.sortLinksClockwise();
+  graph.sortLinksClockwise(options.threads);
   reportProgress(progress, 1.0, "curve smoothing");
   return stats;
 }

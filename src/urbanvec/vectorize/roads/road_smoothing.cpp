@@ -249,7 +249,7 @@ RoadSmoothingStats smoothRoads(RoadGraph& graph, const RoadSmoothingOptions& opt
       averagePass(graph, perimeter, 0.0, nullptr, 1.5, options.threads);
   }
   stats.intersectionsMoved = straightenNearStraightPairs(graph, options.straightAngle);
-  graph.sortLinksClockwise();
+  graph.sortLinksClockwise(options.threads);
   reportProgress(progress, 1.0, "road smoothing");
   return stats;
 }

@@ -521,7 +521,7 @@ ThroughRoadStats straightenThroughRoads(RoadGraph& graph, const ThroughRoadOptio
                          itemStats[k]);
   });
   for (const ThroughRoadStats& s : itemStats) addStats(stats, s);
-  graph.sortLinksClockwise();
+  graph.sortLinksClockwise(options.threads);
   reportProgress(progress, 1.0, "through roads");
   return stats;
 }
