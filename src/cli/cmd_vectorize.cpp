@@ -92,11 +92,12 @@ app::CommandSpec spec() {
           .oneOf({"zhang-suen", "skeleton"})
           .byDefault(
               std::string(vectorize::parcels::spineMethodName(vectorize::parcels::SpineOptions{}.method))));
-  o.push_back(option("-threads", ValueType::Integer, "<n>",
-                     "Worker threads for the block stages (0 = all cores); the output does not depend on it.")
-                  .byDefault("0")
-                  .atLeast(0)
-                  .isAdvanced());
+  o.push_back(
+      option("-threads", ValueType::Integer, "<n>",
+             "Threads for the road and block stages (0 = all cores); the output does not depend on it.")
+          .byDefault("0")
+          .atLeast(0)
+          .isAdvanced());
   o.push_back(option("-roads-only", ValueType::Flag, "",
                      "Stop after the road network (stages A-B): write only roads and road_nodes."));
   for (const app::OptionSpec& v : app::vectorOutputOptions()) o.push_back(v);

@@ -284,6 +284,7 @@ CityResult vectorizeCity(const RoadNetwork& network, const Grid<std::uint8_t>& c
   blocksOptions.road.threads = options.parcels.threads;  // one thread setting for every parallel stage
   blocksOptions.water.threads = options.parcels.threads;
   blocksOptions.outline.threads = options.parcels.threads;
+  blocksOptions.external.threads = options.parcels.threads;
   result.blocks = vectorizeBlocks(network, city, grid, blocksOptions, subProgress(progress, 0.0, 0.35));
   releaseFreedMemory();  // the overlays of C-D5
   for (BlockInfo& info : result.blocks.blockInfo) canonicalizeOutline(info.shape);

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "urbanvec/core/error.hpp"
+#include "urbanvec/core/parallel.hpp"
 #include "urbanvec/vectorize/roads/road_checks.hpp"
 #include "urbanvec/vectorize/roads/road_output.hpp"
 
@@ -216,6 +217,7 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
   });
   run("B2", "road smoothing", 0.05, true, [&](const Progress& p) {
     RoadSmoothingOptions smoothing = options.roadSmoothing;
+    smoothing.threads = options.city.parcels.threads;  // one thread setting for every parallel stage
     if (options.keepRoadCellsCovered) smoothing.coverCells = &result.cells;
     const RoadSmoothingStats s = smoothRoads(graph, smoothing, p);
     return counts(s.nodesMoved, " nodes smoothed, ", s.intersectionsMoved, " intersections re-straightened");
@@ -228,6 +230,7 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
   });
   run("B4", "cycle removal", 0.15, true, [&](const Progress& p) {
     CycleRemovalOptions cycles = options.cycles;
+    cycles.threads = options.city.parcels.threads;
     if (options.keepDevelopedCycles || result.roadsKept) cycles.landUse = &result.cells;
     cycles.keepLandCycles = result.roadsKept;
     CycleRemovalStats s = removeShortCycles(graph, cycles, p);
@@ -248,12 +251,14 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
   });
   run("B6", "curve smoothing", 0.12, true, [&](const Progress& p) {
     CurveSmoothingOptions curves = options.curves;
+    curves.threads = options.city.parcels.threads;
     if (options.keepRoadCellsCovered) curves.coverCells = &result.cells;
     const CurveSmoothingStats s = smoothCurves(graph, curves, p);
     return counts(s.bends, " bends, ", s.nodesInserted, " nodes inserted, ", s.passes, " passes");
   });
   run("B7", "through roads", 0.03, true, [&](const Progress& p) {
     ThroughRoadOptions through = options.throughRoads;
+    through.threads = options.city.parcels.threads;
     if (options.keepRoadCellsCovered) {
       through.cells = &result.cells;
       through.coverRadius = options.curves.coverRadius;
@@ -274,14 +279,23 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
       CycleRemovalOptions degenerate;
       degenerate.maxCycleNodes = std::numeric_limits<int>::max();
       degenerate.maxFaceArea = 1e-4;
+      degenerate.threads = options.city.parcels.threads;
       removeShortCycles(graph, degenerate);
       noded += nodeCrossingsAndContractTinyLinks(graph);
     }
     reportProgress(p, 0.5, "road output");
-    result.network = buildRoadNetwork(graph, options.outputSimplification);
+    // The simplified network and, when it is simplified, the exact one, side by side.
+    const bool simplified = options.outputSimplification > 0;
+    RoadNetwork exact;
+    runParallel(workerCount(options.city.parcels.threads), simplified ? 2 : 1,
+                [&](std::size_t k, std::size_t) {
+                  if (k == 0)
+                    result.network = buildRoadNetwork(graph, options.outputSimplification);
+                  else
+                    exact = buildRoadNetwork(graph, 0.0);
+                });
     std::size_t restored = 0, uncovering = 0;
-    if (options.outputSimplification > 0) {
-      const RoadNetwork exact = buildRoadNetwork(graph, 0.0);
+    if (simplified) {
       uncovering = restoreUncoveringSegments(result.network, exact, input.landUse, result.cells,
                                              options.outputSimplification);
       restored = restoreTouchingSegments(result.network, exact);

@@ -85,7 +85,8 @@ OrientedBox orientedBoundingBox(const Polygon& polygon) {
   return box;
 }
 
-int absorbSlivers(std::vector<PavementPiece>& pavement, const MultiPolygon& slivers, double precisionGrid) {
+int absorbSlivers(std::vector<PavementPiece>& pavement, const MultiPolygon& slivers, double precisionGrid,
+                  int threads) {
   if (slivers.empty()) return 0;
   geos::Context ctx;
   std::vector<geos::GeomPtr> pieces;
@@ -113,14 +114,18 @@ int absorbSlivers(std::vector<PavementPiece>& pavement, const MultiPolygon& sliv
     additions[best].push_back(std::move(g));
     ++absorbed;
   }
-  for (size_t k = 0; k < pavement.size(); ++k) {
-    if (additions[k].empty()) continue;
+  std::vector<size_t> grown;
+  for (size_t k = 0; k < pavement.size(); ++k)
+    if (!additions[k].empty()) grown.push_back(k);
+  const GeosWorkers workers(threads);
+  workers.run(grown.size(), [&](size_t i, size_t, const geos::Context& context) {
+    const size_t k = grown[i];
     additions[k].push_back(std::move(pieces[k]));
-    geos::GeomPtr merged = unionOnGrid(ctx, std::move(additions[k]), precisionGrid);
-    MultiPolygon shape = ctx.toPolygons(merged.get());
+    geos::GeomPtr merged = unionOnGrid(context, std::move(additions[k]), precisionGrid);
+    MultiPolygon shape = context.toPolygons(merged.get());
     for (Polygon& p : shape) orientClockwise(p);
     pavement[k].shape = std::move(shape);
-  }
+  });
   return absorbed;
 }
 

@@ -54,7 +54,10 @@ BlockOutline outlineBlocks(const std::vector<PavementPiece>& pavement, const Blo
 /// corner, then upper-right, then area: an order that does not depend on the pieces' numbering), so
 /// pavement and blocks still tile.
 /// Returns how many found a piece.
-int absorbSlivers(std::vector<PavementPiece>& pavement, const MultiPolygon& slivers, double precisionGrid);
+/// The merges of different pieces are independent and run on `threads` workers (0 = all cores; the
+/// result does not depend on it).
+int absorbSlivers(std::vector<PavementPiece>& pavement, const MultiPolygon& slivers, double precisionGrid,
+                  int threads = 1);
 
 /// PCA oriented bounding box (spec D1): axes from the area-weighted second moments of the polygon,
 /// extents from its outer ring projected on them.

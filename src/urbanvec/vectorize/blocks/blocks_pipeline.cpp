@@ -117,7 +117,8 @@ BlocksResult vectorizeBlocks(const RoadNetwork& network, const SimulatedCity& ci
   // D1: internal blocks and the perimeter.
   BlockOutline outline = outlineBlocks(roads.pieces, options.outline, subProgress(progress, 0.35, 0.5));
   result.perimeterCells = outline.perimeter;
-  stats.absorbedSlivers = absorbSlivers(roads.pieces, outline.slivers, options.outline.precisionGrid);
+  stats.absorbedSlivers =
+      absorbSlivers(roads.pieces, outline.slivers, options.outline.precisionGrid, options.outline.threads);
 
   // D3 + D4: external blocks from the perimeter and the boundary lines.
   if (concurrentWater.started()) {

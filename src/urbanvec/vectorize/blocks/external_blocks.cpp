@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include "urbanvec/core/cell_regions.hpp"
@@ -55,8 +56,6 @@ ExternalBlocks buildExternalBlocks(const RoadNetwork& network, const MultiPolygo
   geos::Context ctx;
   const double grid = options.precisionGrid;
   ExternalBlocks out;
-  const Progress lines = subProgress(progress, 0.0, 0.6);
-  ProgressTicker ticker(lines, "external blocks", network.segments.size());
 
   geos::GeomPtr city_ = ctx.multiPolygon(perimeter);
   const bool hasPerimeter = !perimeter.empty();
@@ -67,12 +66,46 @@ ExternalBlocks buildExternalBlocks(const RoadNetwork& network, const MultiPolygo
   const GEOSPreparedGeometry* prepared = preparedCity[0];
   const GEOSPreparedGeometry* preparedRing = preparedCity[1];
 
-  auto insidePerimeter = [&](const Vec2& p) {
-    if (!hasPerimeter) return false;
-    geos::GeomPtr pt = ctx.point(p);
-    if (GEOSPreparedContains_r(ctx.handle(), prepared, pt.get()) != 1) return false;
-    return GEOSPreparedDistanceWithin_r(ctx.handle(), preparedRing, pt.get(), options.insideTolerance) != 1;
+  // D3's inside tests, a prepared point-in-polygon and distance test per node of every boundary line,
+  // on the workers: each prepares its own copy of the perimeter (GEOS prepares lazily, so prepared
+  // geometries are not shared between threads).
+  const GeosWorkers workers(options.threads);
+  struct Perimeter {
+    geos::GeomPtr city, ring;
+    std::unique_ptr<geos::PreparedGeometries> prepared;
   };
+  std::vector<Perimeter> copies(workers.size());
+  for (Perimeter& copy : copies) {
+    copy.city = ctx.own(GEOSGeom_clone_r(ctx.handle(), city_.get()), "clone");
+    copy.ring = ctx.own(GEOSGeom_clone_r(ctx.handle(), ring.get()), "clone");
+  }
+  std::vector<std::vector<bool>> insideOf(network.segments.size());
+  const Progress lines = subProgress(progress, 0.0, 0.6);
+  ProgressTicker ticker(lines, "external blocks", network.segments.size());
+  workers.run(
+      network.segments.size(),
+      [&](size_t s, size_t w, const geos::Context& context) {
+        const NetworkSegment& seg = network.segments[s];
+        if (seg.roadClass != RoadClass::Perimeter || seg.points.size() < 2) return;
+        Perimeter& copy = copies[w];
+        if (!copy.prepared)
+          copy.prepared = std::make_unique<geos::PreparedGeometries>(
+              context, std::vector<const GEOSGeometry*>{copy.city.get(), copy.ring.get()});
+        const LineString nodes =
+            options.insideShareSpacing > 0.0 ? densified(seg.points, options.insideShareSpacing) : seg.points;
+        for (const Vec2& p : nodes) {
+          bool inside = false;
+          if (hasPerimeter) {
+            geos::GeomPtr pt = context.point(p);
+            inside = GEOSPreparedContains_r(context.handle(), (*copy.prepared)[0], pt.get()) == 1 &&
+                     GEOSPreparedDistanceWithin_r(context.handle(), (*copy.prepared)[1], pt.get(),
+                                                  options.insideTolerance) != 1;
+          }
+          insideOf[s].push_back(inside);
+        }
+      },
+      [&](size_t done) { ticker.tick(done); });
+  ticker.finish();
 
   std::vector<int> perimeterLinesAtNode(network.nodes.size(), 0);
   for (const NetworkSegment& seg : network.segments)
@@ -85,14 +118,11 @@ ExternalBlocks buildExternalBlocks(const RoadNetwork& network, const MultiPolygo
 
   std::vector<geos::GeomPtr> linework;
   if (hasPerimeter) linework.push_back(ctx.own(GEOSGeom_clone_r(ctx.handle(), ring.get()), "clone"));
-  for (const NetworkSegment& seg : network.segments) {
-    ticker.tick();
+  for (size_t s = 0; s < network.segments.size(); ++s) {
+    const NetworkSegment& seg = network.segments[s];
     if (seg.roadClass != RoadClass::Perimeter || seg.points.size() < 2) continue;
     ++out.boundaryLines;
-    std::vector<bool> inside;
-    const LineString nodes =
-        options.insideShareSpacing > 0.0 ? densified(seg.points, options.insideShareSpacing) : seg.points;
-    for (const Vec2& p : nodes) inside.push_back(insidePerimeter(p));
+    const std::vector<bool>& inside = insideOf[s];
     if (boundaryLineTrappedInside(inside, options.insideNodeShare)) {
       ++out.deletedLines;
       continue;

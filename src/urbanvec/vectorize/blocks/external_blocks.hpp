@@ -56,6 +56,8 @@ struct ExternalBlocksOptions {
   /// two-point line between two culs-de-sac (both ends in pavement, all its length in the open)
   /// would count as 100% inside. 0 = the output vertices (the documents' "nodes" read literally).
   double insideShareSpacing = 1.0;
+  /// Worker threads of D3's inside tests (0 = all cores). Does not change the output.
+  int threads = 0;
 };
 
 struct ExternalBlocks {

@@ -2,17 +2,13 @@
 #include "urbanvec/vectorize/pavement/road_geometry.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdint>
-#include <exception>
-#include <limits>
-#include <mutex>
 #include <string>
-#include <thread>
 #include <tuple>
 
 #include "urbanvec/core/error.hpp"
+#include "urbanvec/core/parallel.hpp"
 #include "urbanvec/vectorize/blocks/block_outline.hpp"
 
 namespace urbanvec::vectorize {
@@ -254,64 +250,14 @@ std::vector<int> GeometryIndex::query(const GEOSGeometry* g) const {
 }
 
 GeosWorkers::GeosWorkers(int threads) {
-  const size_t n =
-      threads > 0 ? static_cast<size_t>(threads) : std::max<size_t>(1, std::thread::hardware_concurrency());
+  const size_t n = workerCount(threads);
   for (size_t i = 0; i < n; ++i) contexts_.push_back(std::make_unique<geos::Context>());
 }
 
 void GeosWorkers::run(size_t n, const std::function<void(size_t, size_t, const geos::Context&)>& body,
                       const std::function<void(size_t)>& tick) const {
-  std::atomic<size_t> next{0};
-  std::atomic<size_t> finished{0};
-  std::atomic<bool> stop{false};
-  std::mutex mutex;
-  std::exception_ptr failure;
-  std::exception_ptr cancelled;
-  size_t failureIndex = std::numeric_limits<size_t>::max();
-  size_t reported = 0;
-  auto work = [&](size_t worker, bool caller) {
-    const geos::Context& context = *contexts_[worker];
-    while (!stop) {
-      const size_t i = next++;
-      if (i >= n) break;
-      try {
-        body(i, worker, context);
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(mutex);
-        if (i < failureIndex) {  // the lowest failing item, whatever the scheduling
-          failureIndex = i;
-          failure = std::current_exception();
-        }
-        stop = true;
-      }
-      ++finished;
-      if (caller && tick && !stop) {
-        const size_t now = finished;
-        try {
-          tick(now - reported);
-        } catch (...) {
-          std::lock_guard<std::mutex> lock(mutex);
-          cancelled = std::current_exception();
-          stop = true;
-        }
-        reported = now;
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  const size_t threads = std::min(contexts_.size(), n);
-  try {
-    for (size_t t = 1; t < threads; ++t) pool.emplace_back(work, t, false);
-  } catch (...) {
-    stop = true;
-    for (std::thread& t : pool) t.join();
-    throw;
-  }
-  if (n > 0) work(0, true);
-  for (std::thread& t : pool) t.join();
-  if (cancelled) std::rethrow_exception(cancelled);
-  if (failure) std::rethrow_exception(failure);
-  if (tick && finished > reported) tick(finished - reported);
+  runParallel(
+      contexts_.size(), n, [&](size_t i, size_t worker) { body(i, worker, *contexts_[worker]); }, tick);
 }
 
 geos::GeomPtr unionOnGrid(const geos::Context& context, std::vector<geos::GeomPtr> parts, double grid) {

@@ -63,11 +63,11 @@ CurveSmoothingStats smoothCurves(RoadGraph& graph, const CurveSmoothingOptions& 
   updateIntersectionFlags(graph);
   const std::vector<char> movable = smoothableRoadNodes(graph, false);
   for (int pass = 0; pass < options.passes; ++pass) {
-    averagePass(graph, movable, options.reach, options.coverCells, options.coverRadius);
+    averagePass(graph, movable, options.reach, options.coverCells, options.coverRadius, options.threads);
     ++stats.passes;
     reportProgress(progress, 0.2 + 0.8 * (pass + 1) / options.passes, "curve smoothing");
   }
-  graph.sortLinksClockwise();
+  graph.sortLinksClockwise(options.threads);
   reportProgress(progress, 1.0, "curve smoothing");
   return stats;
 }

@@ -24,6 +24,8 @@ struct CurveSmoothingOptions {
   /// [INFERENCE, beyond the documents] As RoadSmoothingOptions::coverCells / coverRadius (pw).
   const Grid<std::uint8_t>* coverCells = nullptr;
   double coverRadius = 1.5;
+  /// Worker threads of the averaging passes; 0 = all cores. Does not change the output.
+  int threads = 0;
 };
 
 struct CurveSmoothingStats {

@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "urbanvec/core/landuse.hpp"
+#include "urbanvec/core/parallel.hpp"
 #include "urbanvec/core/planar_graph.hpp"
 #include "urbanvec/vectorize/roads/road_checks.hpp"
 #include "urbanvec/vectorize/vectorize_input.hpp"
@@ -128,7 +129,7 @@ CycleRemovalStats removeShortCycles(RoadGraph& graph, const CycleRemovalOptions&
   CycleRemovalStats stats;
   // The face walk needs a planar embedding; smoothing can make links cross (tiny twisted loops).
   if (options.planarizeFirst) stats.crossingsNoded = nodeCrossingsAndContractTinyLinks(graph);
-  graph.sortLinksClockwise();
+  graph.sortLinksClockwise(options.threads);
   for (int round = 0; round < options.maxRounds; ++round) {
     const RoadAdjacency adj = roadAdjacency(graph);
     auto roadDegree = [&](int i) { return adj.offsets[i + 1] - adj.offsets[i]; };
@@ -136,19 +137,27 @@ CycleRemovalStats removeShortCycles(RoadGraph& graph, const CycleRemovalOptions&
         walkFaces(graph, adj,
                   options.keepLandCycles ? std::min(options.maxFaceArea, options.landlessFaceArea)
                                          : options.maxFaceArea);
-    // Distinct-node count per face; smallest faces first (deterministic).
+    // Distinct-node count per face (and whether it keeps its roads, on the workers); smallest faces
+    // first (deterministic).
+    std::vector<int> distinctNodes(faces.size(), 0);
+    std::vector<char> keeps(faces.size(), 0);
+    runChunks(workerCount(options.threads), faces.size(), 256, [&](size_t begin, size_t end, size_t) {
+      for (size_t f = begin; f < end; ++f) {
+        std::vector<int> nodes = faces[f];
+        std::sort(nodes.begin(), nodes.end());
+        distinctNodes[f] = static_cast<int>(std::unique(nodes.begin(), nodes.end()) - nodes.begin());
+        keeps[f] = distinctNodes[f] <= options.maxCycleNodes && options.landUse &&
+                   enclosesDevelopedLand(graph, faces[f], *options.landUse, options.keepLandCycles);
+      }
+    });
     std::vector<std::pair<int, int>> order;
     for (size_t f = 0; f < faces.size(); ++f) {
-      std::vector<int> nodes = faces[f];
-      std::sort(nodes.begin(), nodes.end());
-      const int distinct = static_cast<int>(std::unique(nodes.begin(), nodes.end()) - nodes.begin());
-      if (distinct > options.maxCycleNodes) continue;
-      if (options.landUse &&
-          enclosesDevelopedLand(graph, faces[f], *options.landUse, options.keepLandCycles)) {
+      if (distinctNodes[f] > options.maxCycleNodes) continue;
+      if (keeps[f]) {
         if (round == 0) ++stats.developedFacesKept;
         continue;
       }
-      order.emplace_back(distinct, static_cast<int>(f));
+      order.emplace_back(distinctNodes[f], static_cast<int>(f));
     }
     if (order.empty()) break;
     std::sort(order.begin(), order.end());
@@ -216,7 +225,7 @@ CycleRemovalStats removeShortCycles(RoadGraph& graph, const CycleRemovalOptions&
   }
   graph.compact();
   updateIntersectionFlags(graph);
-  graph.sortLinksClockwise();
+  graph.sortLinksClockwise(options.threads);
   reportProgress(progress, 1.0, "cycle removal");
   return stats;
 }

@@ -39,6 +39,8 @@ struct CycleRemovalOptions {
   /// beside it). Longer loops around road cells alone are carriageways side by side in a band of road
   /// cells, real roads (measured in docs/vectorize.md, "Keeping every road").
   double landlessFaceArea = 4.0;
+  /// Worker threads of the per-face tests and link sorting (0 = all cores). Does not change the output.
+  int threads = 0;
 };
 
 struct CycleRemovalStats {

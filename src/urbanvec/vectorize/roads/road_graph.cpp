@@ -5,6 +5,8 @@
 #include <deque>
 #include <limits>
 
+#include "urbanvec/core/parallel.hpp"
+
 namespace urbanvec::vectorize {
 
 int RoadGraph::addNode(const Vec2& p, NodeType type, int col, int row) {
@@ -78,14 +80,17 @@ double azimuth(const Vec2& a, const Vec2& b) {
   return az;
 }
 
-void RoadGraph::sortLinksClockwise() {
-  for (RoadNode& n : nodes) {
-    if (!n.alive || n.links.size() < 2) continue;
-    std::sort(n.links.begin(), n.links.end(), [&](int a, int b) {
-      const double za = azimuth(n.p, nodes[a].p), zb = azimuth(n.p, nodes[b].p);
-      return za != zb ? za < zb : a < b;
-    });
-  }
+void RoadGraph::sortLinksClockwise(int threads) {
+  runChunks(workerCount(threads), nodes.size(), 4096, [&](size_t begin, size_t end, size_t) {
+    for (size_t i = begin; i < end; ++i) {
+      RoadNode& n = nodes[i];
+      if (!n.alive || n.links.size() < 2) continue;
+      std::sort(n.links.begin(), n.links.end(), [&](int a, int b) {
+        const double za = azimuth(n.p, nodes[a].p), zb = azimuth(n.p, nodes[b].p);
+        return za != zb ? za < zb : a < b;
+      });
+    }
+  });
 }
 
 int RoadGraph::sameTypeDegree(int a) const {

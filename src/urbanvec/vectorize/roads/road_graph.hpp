@@ -49,8 +49,9 @@ class RoadGraph {
   size_t linkCount() const;
   /// Drops tombstoned nodes and renumbers the rest, keeping their order.
   void compact();
-  /// Sorts every node's links by azimuth atan2(dx, dy), clockwise from due north (A4.7).
-  void sortLinksClockwise();
+  /// Sorts every node's links by azimuth atan2(dx, dy), clockwise from due north (A4.7), on `threads`
+  /// workers (0 = all cores; each node's sort is its own).
+  void sortLinksClockwise(int threads = 1);
   /// Neighbours of `a` that have the same type as `a`.
   int sameTypeDegree(int a) const;
 };

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "urbanvec/core/geometry.hpp"
+#include "urbanvec/core/parallel.hpp"
 #include "urbanvec/vectorize/roads/road_network.hpp"
 #include "urbanvec/vectorize/roads/straightening.hpp"
 #include "urbanvec/vectorize/vectorize_input.hpp"
@@ -89,10 +90,38 @@ class LinkBuckets {
   std::vector<std::pair<std::int32_t, std::int32_t>> links_;
 };
 
+/// Nodes per work item of the parallel loops below: a pass over a node costs well under a microsecond.
+constexpr size_t kNodeChunk = 2048;
+
+/// The road cells within `radius` of the old links of the nodes in [begin, end) that move, at risk of
+/// being uncovered (a link covers them by less than `largest` to spare of `r`), sorted and unique.
+std::vector<std::int64_t> riskCells(const RoadGraph& graph, const std::vector<char>& movable,
+                                    const std::vector<Vec2>& next, const std::vector<Vec2>& old,
+                                    const Grid<std::uint8_t>& cells, double radius, double r, double largest,
+                                    size_t begin, size_t end) {
+  std::vector<std::int64_t> out;
+  for (size_t i = begin; i < end; ++i) {
+    if (!movable[i] || next[i] == old[i]) continue;
+    for (int j : graph.nodes[i].links) {
+      if (graph.nodes[j].type == NodeType::Perimeter) continue;
+      const Vec2 a = old[i], b = old[static_cast<size_t>(j)];
+      forEachCellNearSegment(cells, a, b, radius, [&](int col, int row, double d) {
+        if (isRoadCode(cells.at(col, row)) && d + largest > r)
+          out.push_back(static_cast<std::int64_t>(row) * cells.width + col);
+      });
+    }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
 /// Undoes (sets next[i] back to the current position) the moves in `next` that would leave a road
-/// cell of `cells` farther than `radius` from every road link that covered it, until none does.
+/// cell of `cells` farther than `radius` from every road link that covered it, until none does. The
+/// search for cells at risk runs on `workers` threads (each chunk's cells merged in order); the undo
+/// sweeps, whose order matters, on this one.
 void undoUncoveringMoves(const RoadGraph& graph, const std::vector<char>& movable, std::vector<Vec2>& next,
-                         const Grid<std::uint8_t>& cells, double radius) {
+                         const Grid<std::uint8_t>& cells, double radius, size_t workers) {
   const double r = radius + 1e-9;
   std::vector<Vec2> old(graph.nodes.size());
   for (size_t i = 0; i < graph.nodes.size(); ++i) old[i] = graph.nodes[i].p;
@@ -102,28 +131,36 @@ void undoUncoveringMoves(const RoadGraph& graph, const std::vector<char>& movabl
   for (size_t i = 0; i < next.size(); ++i) largest = std::max(largest, length(next[i] - old[i]));
   if (largest == 0.0) return;
   const LinkBuckets before(graph, old, cells.width, cells.height, frameOffset(cells));
+  // Each chunk's cells sorted and unique, then merged in chunk order.
+  const size_t n = graph.nodes.size();
+  std::vector<std::vector<std::int64_t>> parts((n + kNodeChunk - 1) / kNodeChunk);
+  runChunks(workers, n, kNodeChunk, [&](size_t begin, size_t end, size_t) {
+    parts[begin / kNodeChunk] = riskCells(graph, movable, next, old, cells, radius, r, largest, begin, end);
+  });
   std::vector<std::int64_t> candidates;
-  for (size_t i = 0; i < graph.nodes.size(); ++i) {
-    if (!movable[i] || next[i] == old[i]) continue;
-    for (int j : graph.nodes[i].links) {
-      if (graph.nodes[j].type == NodeType::Perimeter) continue;
-      const Vec2 a = old[i], b = old[static_cast<size_t>(j)];
-      forEachCellNearSegment(cells, a, b, radius, [&](int col, int row, double d) {
-        if (isRoadCode(cells.at(col, row)) && d + largest > r)
-          candidates.push_back(static_cast<std::int64_t>(row) * cells.width + col);
-      });
-    }
+  for (const std::vector<std::int64_t>& part : parts) {
+    const size_t middle = candidates.size();
+    candidates.insert(candidates.end(), part.begin(), part.end());
+    std::inplace_merge(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(middle),
+                       candidates.end());
   }
-  std::sort(candidates.begin(), candidates.end());
   candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  auto centreOf = [&](std::int64_t k) {
+    return patchCentre(cells, static_cast<int>(k % cells.width), static_cast<int>(k / cells.width));
+  };
   auto atRisk = [&](std::int64_t k) {
-    const Vec2 c = patchCentre(cells, static_cast<int>(k % cells.width), static_cast<int>(k / cells.width));
+    const Vec2 c = centreOf(k);
     return !before.anyNear(c, r,
                            [&](int a, int b) { return distanceToSegment(c, old[a], old[b]) + largest <= r; });
   };
-  candidates.erase(
-      std::remove_if(candidates.begin(), candidates.end(), [&](std::int64_t k) { return !atRisk(k); }),
-      candidates.end());
+  std::vector<char> keep(candidates.size(), 0);
+  runChunks(workers, candidates.size(), kNodeChunk, [&](size_t begin, size_t end, size_t) {
+    for (size_t k = begin; k < end; ++k) keep[k] = atRisk(candidates[k]);
+  });
+  size_t kept = 0;
+  for (size_t k = 0; k < candidates.size(); ++k)
+    if (keep[k]) candidates[kept++] = candidates[k];
+  candidates.resize(kept);
   // A link's new position lies within `largest` of its old one, so the old index finds it.
   auto coveredNow = [&](const Vec2& c) {
     return before.anyNear(c, r + largest,
@@ -132,7 +169,7 @@ void undoUncoveringMoves(const RoadGraph& graph, const std::vector<char>& movabl
   for (bool undone = !candidates.empty(); undone;) {
     undone = false;
     for (std::int64_t k : candidates) {
-      const Vec2 c = patchCentre(cells, static_cast<int>(k % cells.width), static_cast<int>(k / cells.width));
+      const Vec2 c = centreOf(k);
       if (coveredNow(c)) continue;
       // Halve the moves of the ends of every link that covered it, down to none: its old links cover
       // it again at the latest.
@@ -155,26 +192,29 @@ void undoUncoveringMoves(const RoadGraph& graph, const std::vector<char>& movabl
 }  // namespace
 
 void averagePass(RoadGraph& graph, const std::vector<char>& movable, double reach,
-                 const Grid<std::uint8_t>* coverCells, double coverRadius) {
+                 const Grid<std::uint8_t>* coverCells, double coverRadius, int threads) {
+  const size_t workers = workerCount(threads);
   std::vector<Vec2> next(graph.nodes.size());
-  for (size_t i = 0; i < graph.nodes.size(); ++i) {
-    const RoadNode& n = graph.nodes[i];
-    next[i] = n.p;
-    if (!movable[i]) continue;
-    Vec2 sum = n.p;
-    int count = 1;
-    for (int j : n.links)
-      if (graph.nodes[j].type == n.type) {
-        sum += graph.nodes[j].p;
-        ++count;
-      }
-    next[i] = sum / count;
-    const double maxShift = smoothingShiftLimit(n.type, reach);
-    const Vec2 shift = next[i] - n.placed;
-    const double distance = length(shift);
-    if (distance > maxShift) next[i] = n.placed + shift * (maxShift / distance);
-  }
-  if (coverCells) undoUncoveringMoves(graph, movable, next, *coverCells, coverRadius);
+  runChunks(workers, graph.nodes.size(), kNodeChunk, [&](size_t begin, size_t end, size_t) {
+    for (size_t i = begin; i < end; ++i) {
+      const RoadNode& n = graph.nodes[i];
+      next[i] = n.p;
+      if (!movable[i]) continue;
+      Vec2 sum = n.p;
+      int count = 1;
+      for (int j : n.links)
+        if (graph.nodes[j].type == n.type) {
+          sum += graph.nodes[j].p;
+          ++count;
+        }
+      next[i] = sum / count;
+      const double maxShift = smoothingShiftLimit(n.type, reach);
+      const Vec2 shift = next[i] - n.placed;
+      const double distance = length(shift);
+      if (distance > maxShift) next[i] = n.placed + shift * (maxShift / distance);
+    }
+  });
+  if (coverCells) undoUncoveringMoves(graph, movable, next, *coverCells, coverRadius, workers);
   for (size_t i = 0; i < graph.nodes.size(); ++i) graph.nodes[i].p = next[i];
 }
 
@@ -195,7 +235,7 @@ RoadSmoothingStats smoothRoads(RoadGraph& graph, const RoadSmoothingOptions& opt
   const std::vector<char> movable = smoothableRoadNodes(graph, true);
   for (char m : movable) stats.nodesMoved += m;
   for (int pass = 0; pass < options.passes; ++pass) {
-    averagePass(graph, movable, options.reach, options.coverCells, options.coverRadius);
+    averagePass(graph, movable, options.reach, options.coverCells, options.coverRadius, options.threads);
     reportProgress(progress, 0.8 * (pass + 1) / std::max(1, options.passes), "road smoothing");
   }
   if (options.perimeterPasses > 0) {
@@ -205,10 +245,11 @@ RoadSmoothingStats smoothRoads(RoadGraph& graph, const RoadSmoothingOptions& opt
       perimeter[i] = n.alive && n.type == NodeType::Perimeter &&
                      graph.sameTypeDegree(static_cast<int>(i)) == 2 && n.links.size() == 2;
     }
-    for (int pass = 0; pass < options.perimeterPasses; ++pass) averagePass(graph, perimeter, 0.0);
+    for (int pass = 0; pass < options.perimeterPasses; ++pass)
+      averagePass(graph, perimeter, 0.0, nullptr, 1.5, options.threads);
   }
   stats.intersectionsMoved = straightenNearStraightPairs(graph, options.straightAngle);
-  graph.sortLinksClockwise();
+  graph.sortLinksClockwise(options.threads);
   reportProgress(progress, 1.0, "road smoothing");
   return stats;
 }

@@ -43,6 +43,8 @@ struct RoadSmoothingOptions {
   /// documents' unconstrained averaging (within `reach`).
   const Grid<std::uint8_t>* coverCells = nullptr;
   double coverRadius = 1.5;
+  /// Worker threads of the averaging passes; 0 = all cores. Does not change the output.
+  int threads = 0;
 };
 
 struct RoadSmoothingStats {
@@ -54,9 +56,10 @@ struct RoadSmoothingStats {
 /// same-type neighbours' positions, pulled back onto the circle of radius smoothingShiftLimit(type,
 /// `reach`) around its placement when the mean lies farther. Shared with curve smoothing (B6).
 /// With `coverCells`, a move is undone when it would leave a road cell its links covered (within
-/// `coverRadius`) uncovered by them.
+/// `coverRadius`) uncovered by them. Runs on `threads` workers (0 = all cores); the result does not
+/// depend on their number.
 void averagePass(RoadGraph& graph, const std::vector<char>& movable, double reach,
-                 const Grid<std::uint8_t>* coverCells = nullptr, double coverRadius = 1.5);
+                 const Grid<std::uint8_t>* coverCells = nullptr, double coverRadius = 1.5, int threads = 1);
 
 /// Which nodes B2/B6 may move: alive road nodes that are not dead ends, intersections (or, when
 /// `fixConnections`, primary/secondary connection nodes) and have at least two same-type neighbours.

@@ -1,7 +1,8 @@
 // Stage B7 (issue 20, extending spec §3 B1 and its "optional improvement", after B6): see
 // through_roads.hpp. Arms and lines are fitted to the nodes' placements (the cells they were made
 // for), not to their smoothed positions, so the lines are those of the cells; intersections are
-// visited in node order and every step is sequential, so the result does not depend on -threads.
+// visited in node order and every step reads the positions the earlier ones left; on several threads
+// the steps run speculatively and are committed in that order (SpeculativeMoves), with the same result.
 #include "urbanvec/vectorize/roads/through_roads.hpp"
 
 #include <algorithm>
@@ -9,8 +10,10 @@
 #include <cstdint>
 #include <limits>
 
+#include "urbanvec/core/parallel.hpp"
 #include "urbanvec/core/segment_contact.hpp"
 #include "urbanvec/vectorize/roads/road_network.hpp"
+#include "urbanvec/vectorize/roads/speculative_moves.hpp"
 #include "urbanvec/vectorize/roads/straightening.hpp"
 #include "urbanvec/vectorize/vectorize_input.hpp"
 
@@ -63,6 +66,7 @@ struct Surroundings {
   const NodeIndex& index;
   double longestLink = 0.0;  ///< padded by how far nodes may move
   double coverQuery = 0.0;   ///< radius around a cell holding an end of every link within coverRadius
+  ReadFootprint* footprint = nullptr;  ///< what the item reads, when it runs speculatively (-threads)
 };
 
 /// The length of the graph's longest link (pw).
@@ -97,7 +101,7 @@ bool anyUncovered(const RoadGraph& graph, const Grid<std::uint8_t>& cells, const
   for (std::int64_t k : candidates) {
     const Vec2 c = patchCentre(cells, static_cast<int>(k % cells.width), static_cast<int>(k / cells.width));
     bool covered = false;
-    for (int a : around.index.within(c, around.coverQuery)) {
+    for (int a : recordedWithin(around.index, c, around.coverQuery, around.footprint)) {
       if (graph.nodes[a].type == NodeType::Perimeter) continue;  // perimeter links are no roads
       for (int b : graph.nodes[a].links)
         if (graph.nodes[b].type != NodeType::Perimeter &&
@@ -136,7 +140,8 @@ bool movedLinksCross(const RoadGraph& graph, const Surroundings& around, const s
     const Vec2 a = graph.nodes[m].p;
     for (int q : graph.nodes[m].links) {
       const Vec2 b = graph.nodes[q].p;
-      for (int c : around.index.within(a, distance(a, b) + around.longestLink + 1.0))
+      for (int c :
+           recordedWithin(around.index, a, distance(a, b) + around.longestLink + 1.0, around.footprint))
         for (int d : graph.nodes[c].links) {
           if (c == m || c == q || d == m || d == q) continue;
           if (segmentsCross(a, b, graph.nodes[c].p, graph.nodes[d].p)) return true;
@@ -317,6 +322,7 @@ bool straightBetween(const RoadGraph& graph, const std::vector<Vec2>& placements
 
 void placeIntersection(RoadGraph& graph, int at, const ThroughRoadOptions& options,
                        const Surroundings& around, ThroughRoadStats& stats) {
+  if (around.footprint) around.footprint->nodes.push_back(at);
   RoadNode& node = graph.nodes[at];
   const std::vector<std::int32_t> links = node.links;
   std::vector<Arm> arms;
@@ -366,6 +372,8 @@ void placeIntersection(RoadGraph& graph, int at, const ThroughRoadOptions& optio
   std::vector<int> mayMove{at};
   for (const Arm& arm : arms)
     mayMove.insert(mayMove.end(), arm.nodes.begin(), arm.nodes.begin() + arm.movable);
+  if (around.footprint)
+    around.footprint->nodes.insert(around.footprint->nodes.end(), mayMove.begin(), mayMove.end());
   const std::vector<std::int64_t> covered =
       options.cells ? cellsNearLinks(graph, *options.cells, mayMove, options.coverRadius)
                     : std::vector<std::int64_t>();
@@ -832,6 +840,62 @@ void consolidateJunctions(RoadGraph& graph, const ThroughRoadOptions& options, c
   }
 }
 
+/// Straight roads from node i (B7's second part): every chain from i to a higher-numbered end whose
+/// placements lie in the band of the straight line joining its (placed) ends, or of their own line with
+/// the ends near it (straightChain), is drawn on the segment between its ends.
+void straightenChainsFrom(RoadGraph& graph, std::size_t i, const ThroughRoadOptions& options,
+                          const Surroundings& around, ThroughRoadStats& stats) {
+  std::vector<Vec2> placements, outer;
+  const std::vector<std::int32_t> links = graph.nodes[i].links;
+  for (int next : links) {
+    const std::vector<int> chain = followChain(graph, static_cast<int>(i), next);
+    const int end = chain.back();
+    if (end <= static_cast<int>(i) || chain.size() < 2) continue;  // each chain once; loops skipped
+    bool road = true;
+    placements.assign(1, graph.nodes[i].placed);
+    for (int k : chain) {
+      road = road && isRoad(graph.nodes[k]);
+      placements.push_back(graph.nodes[k].placed);
+    }
+    if (!road) continue;
+    if (around.footprint) {  // the positions of i, the chain and their neighbours are read from here on
+      around.footprint->nodes.push_back(static_cast<int>(i));
+      around.footprint->nodes.insert(around.footprint->nodes.end(), chain.begin(), chain.end());
+    }
+    const Vec2 a = graph.nodes[i].p, b = graph.nodes[end].p;
+    if (!straightBetween(graph, placements, static_cast<int>(i), end, a, b, options, outer)) continue;
+    const Vec2 ab = b - a;
+    double along = 0.0;
+    const std::vector<int> moved(chain.begin(), chain.end() - 1);
+    const std::vector<std::int64_t> covered =
+        options.cells ? cellsNearLinks(graph, *options.cells, moved, options.coverRadius)
+                      : std::vector<std::int64_t>();
+    std::vector<Vec2> before;
+    for (int k : moved) {
+      RoadNode& node = graph.nodes[k];
+      before.push_back(node.p);
+      along = std::clamp(dot(node.p - a, ab) / dot(ab, ab), along, 1.0);
+      node.p = a + ab * along;
+    }
+    if (rejectMoves(graph, options, around, moved, covered, stats)) {
+      restore(graph, moved, before);
+      continue;
+    }
+    ++stats.straightChains;
+  }
+}
+
+void addStats(ThroughRoadStats& to, const ThroughRoadStats& s) {
+  to.intersections += s.intersections;
+  to.pairs += s.pairs;
+  to.nodesPlaced += s.nodesPlaced;
+  to.outOfReach += s.outOfReach;
+  to.approaches += s.approaches;
+  to.straightChains += s.straightChains;
+  to.crossingsAvoided += s.crossingsAvoided;
+  to.uncoveringAvoided += s.uncoveringAvoided;
+}
+
 }  // namespace
 
 bool consistentWithSegment(const std::vector<Vec2>& placements, const Vec2& a, const Vec2& b, double slack) {
@@ -875,64 +939,51 @@ ThroughRoadStats straightenThroughRoads(RoadGraph& graph, const ThroughRoadOptio
     graph.sortLinksClockwise();
   }
   const std::size_t n = graph.nodes.size();
-  const NodeIndex index(graph, 4.0);
-  Surroundings around{index, longestLink(graph)};
+  // Intersections are placed one after another in node order, then the straight roads drawn, each move
+  // checked against the positions the earlier ones left: on several threads, speculatively with the same
+  // result (SpeculativeMoves).
+  SpeculativeMoves moves(graph, workerCount(options.threads), 4.0);
+  double linkReach = longestLink(graph);
   // Moves only shorten or keep links near the window's size; a link within coverRadius of a cell has
   // an end within coverRadius + its length of it.
-  around.coverQuery = around.longestLink + 2.0 * options.window + options.coverRadius;
+  const double coverQuery = linkReach + 2.0 * options.window + options.coverRadius;
   // Nodes move by a few pw at most; the neighbourhood queries look that much farther.
-  around.longestLink += 2.0 * (options.reach + options.window);
-  const Progress placing = subProgress(progress, 0.0, 0.6);
-  ProgressTicker ticker(placing, "through roads", n);
-  for (std::size_t i = 0; i < n; ++i, ticker.tick()) {
+  linkReach += 2.0 * (options.reach + options.window);
+  auto surroundings = [&](const NodeIndex& index, ReadFootprint* footprint) {
+    return Surroundings{index, linkReach, coverQuery, footprint};
+  };
+  std::vector<int> items;
+  for (std::size_t i = 0; i < n; ++i) {
     const RoadNode& node = graph.nodes[i];
-    if (!isRoad(node) || !node.intersection || node.links.size() < 3) continue;
-    ++stats.intersections;
-    placeIntersection(graph, static_cast<int>(i), options, around, stats);
+    if (isRoad(node) && node.intersection && node.links.size() >= 3) items.push_back(static_cast<int>(i));
   }
+  std::vector<ThroughRoadStats> itemStats(items.size());
+  const Progress placing = subProgress(progress, 0.0, 0.6);
+  ProgressTicker ticker(placing, "through roads", items.size());
+  moves.run(
+      items.size(),
+      [&](std::size_t k, RoadGraph& g, const NodeIndex& index, ReadFootprint* footprint) {
+        itemStats[k] = ThroughRoadStats();
+        ++itemStats[k].intersections;
+        placeIntersection(g, items[k], options, surroundings(index, footprint), itemStats[k]);
+      },
+      [&](std::size_t done) { ticker.tick(done); });
   ticker.finish();
 
-  // Straight roads: every chain between two ends whose placements lie in the band of the straight
-  // line joining its (placed) ends, or of their own line with the ends near it (straightChain), is
-  // drawn on the segment between its ends.
-  std::vector<Vec2> placements, outer;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!isRoad(graph.nodes[i]) || !isChainEnd(graph, static_cast<int>(i))) continue;
-    const std::vector<std::int32_t> links = graph.nodes[i].links;
-    for (int next : links) {
-      const std::vector<int> chain = followChain(graph, static_cast<int>(i), next);
-      const int end = chain.back();
-      if (end <= static_cast<int>(i) || chain.size() < 2) continue;  // each chain once; loops skipped
-      bool road = true;
-      placements.assign(1, graph.nodes[i].placed);
-      for (int k : chain) {
-        road = road && isRoad(graph.nodes[k]);
-        placements.push_back(graph.nodes[k].placed);
-      }
-      if (!road) continue;
-      const Vec2 a = graph.nodes[i].p, b = graph.nodes[end].p;
-      if (!straightBetween(graph, placements, static_cast<int>(i), end, a, b, options, outer)) continue;
-      const Vec2 ab = b - a;
-      double along = 0.0;
-      const std::vector<int> moved(chain.begin(), chain.end() - 1);
-      const std::vector<std::int64_t> covered =
-          options.cells ? cellsNearLinks(graph, *options.cells, moved, options.coverRadius)
-                        : std::vector<std::int64_t>();
-      std::vector<Vec2> before;
-      for (int k : moved) {
-        RoadNode& node = graph.nodes[k];
-        before.push_back(node.p);
-        along = std::clamp(dot(node.p - a, ab) / dot(ab, ab), along, 1.0);
-        node.p = a + ab * along;
-      }
-      if (rejectMoves(graph, options, around, moved, covered, stats)) {
-        restore(graph, moved, before);
-        continue;
-      }
-      ++stats.straightChains;
-    }
-  }
-  graph.sortLinksClockwise();
+  // Straight roads: the chains from every road node that ends chains, in node order.
+  items.clear();
+  for (std::size_t i = 0; i < n; ++i)
+    if (isRoad(graph.nodes[i]) && isChainEnd(graph, static_cast<int>(i)))
+      items.push_back(static_cast<int>(i));
+  for (const ThroughRoadStats& s : itemStats) addStats(stats, s);
+  itemStats.assign(items.size(), ThroughRoadStats());
+  moves.run(items.size(), [&](std::size_t k, RoadGraph& g, const NodeIndex& index, ReadFootprint* footprint) {
+    itemStats[k] = ThroughRoadStats();
+    straightenChainsFrom(g, static_cast<std::size_t>(items[k]), options, surroundings(index, footprint),
+                         itemStats[k]);
+  });
+  for (const ThroughRoadStats& s : itemStats) addStats(stats, s);
+  graph.sortLinksClockwise(options.threads);
   reportProgress(progress, 1.0, "through roads");
   return stats;
 }

@@ -90,6 +90,9 @@ struct ThroughRoadOptions {
   /// shallowest crossing of two roads that are not one. 0 = off. Measured (docs/vectorize.md,
   /// "Junction clusters"): 2 and 2.37 within noise, 1.5 and 3 worse on the synthetic grids.
   double junctionSpan = 2.37;
+  /// Worker threads (0 = all cores). Does not change the output: the moves are made speculatively on
+  /// each thread's copy of the graph and committed in node order (SpeculativeMoves).
+  int threads = 0;
 };
 
 struct ThroughRoadStats {
