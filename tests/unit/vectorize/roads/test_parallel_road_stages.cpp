@@ -1,7 +1,7 @@
 // The road stages that run on -threads (B2 and B6 averaging, B7 through roads: issue 21) give the
 // graph of one thread, bit for bit, on the real sample grids: B7 runs its steps speculatively on
 // each thread's copy of the graph and commits them in node order, running a step again when a node it
-// read has moved since; Monaco's dense centre makes a hundred or so of its steps run again.
+// read has moved since; Monaco's dense centre makes dozens of its steps run again (more with more threads).
 #include <gtest/gtest.h>
 
 #include <cstring>
