@@ -296,6 +296,12 @@ TEST(JunctionClusters, TwoPrimariesSharingCellsAtAShallowCrossingBecomeOneCrossi
   }
   EXPECT_EQ(onFirst, 2);
   EXPECT_EQ(onSecond, 2);
+  // The approaches drawn straight from the crossing (4 pw to the first node left in place) are cut into
+  // links no longer than the graph's longest before (1 pw; the straight roads drawn after it may space
+  // them up to 4/3 pw), so the rest of the stage's neighbourhood queries stay their size.
+  for (std::size_t k = 0; k < g.nodes.size(); ++k)
+    for (int q : g.nodes[k].links)
+      if (g.nodes[k].alive) EXPECT_LE(distance(g.nodes[k].p, g.nodes[q].p), 1.5);
 }
 
 TEST(JunctionClusters, ALoopInsideACrossingGoesAndTheRoadsRunStraightThroughIt) {
