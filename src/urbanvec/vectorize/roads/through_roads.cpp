@@ -598,7 +598,11 @@ bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, con
     points.push_back(meet);
   }
   // Two crossings are one junction, at the least-squares crossing of all their lines, when that point
-  // lies within every one of those lines' band (the straightness rule): no road bends at it.
+  // lies within every one of those lines' band (the straightness rule): no road bends at it. Where two
+  // or more through roads meet, the junction is their crossing (where B7's placement puts it too), and a
+  // stem joins it when that crossing lies within the stem's band or within -smooth-reach of its line (as
+  // far as a node may move off its cells); a stem farther off keeps its own junction where it meets a
+  // through road, instead of bending into a point between its line and the through roads' crossing.
   for (bool merged = true; merged;) {
     merged = false;
     for (std::size_t i = 0; i < points.size() && !merged; ++i)
@@ -607,14 +611,21 @@ bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, con
         both.insert(both.end(), points[k].lines.begin(), points[k].lines.end());
         std::sort(both.begin(), both.end());
         both.erase(std::unique(both.begin(), both.end()), both.end());
-        std::vector<std::pair<Vec2, Vec2>> fit;
-        for (std::size_t l : both) fit.push_back({lines[l].centre, lines[l].direction});
+        std::vector<std::pair<Vec2, Vec2>> fit, through;
+        for (std::size_t l : both) {
+          fit.push_back({lines[l].centre, lines[l].direction});
+          if (lines[l].through) through.push_back(fit.back());
+        }
+        const bool atThrough = through.size() >= 2;
         Vec2 x = (points[i].p + points[k].p) * 0.5;
-        leastSquaresCrossing(fit, x);
+        if (!leastSquaresCrossing(atThrough ? through : fit, x) && atThrough) continue;
         bool onAll = true;
-        for (std::size_t l : both)
-          onAll = onAll && std::fabs(cross(lines[l].direction, x - lines[l].centre)) <=
-                               digitalLineBand(lines[l].direction) + options.slack + kPlacementRounding;
+        for (std::size_t l : both) {
+          double tolerance = digitalLineBand(lines[l].direction) + options.slack;
+          if (atThrough && !lines[l].through) tolerance = std::max(tolerance, options.reach);
+          onAll = onAll &&
+                  std::fabs(cross(lines[l].direction, x - lines[l].centre)) <= tolerance + kPlacementRounding;
+        }
         if (!onAll) continue;
         points[i] = {x, both};
         points.erase(points.begin() + static_cast<std::ptrdiff_t>(k));
