@@ -12,6 +12,7 @@
 
 #include "urbanvec/core/parallel.hpp"
 #include "urbanvec/core/segment_contact.hpp"
+#include "urbanvec/vectorize/roads/road_graph_build.hpp"
 #include "urbanvec/vectorize/roads/road_network.hpp"
 #include "urbanvec/vectorize/roads/speculative_moves.hpp"
 #include "urbanvec/vectorize/roads/straightening.hpp"
@@ -61,13 +62,70 @@ bool isChainEnd(const RoadGraph& graph, int i) {
   return n.intersection || n.links.size() != 2;
 }
 
+/// A bucket index over node positions that follows the nodes as they move (the junction clusters,
+/// rebuilt one after another on one thread): its queries see where the nodes are now, so they need
+/// look no farther than the longest link, however far earlier rebuilds moved their junctions.
+class LiveIndex {
+ public:
+  LiveIndex(const RoadGraph& graph, double bucket) : graph_(graph), bucket_(bucket) {
+    double maxX = 0.0, maxY = 0.0;
+    for (const RoadNode& node : graph.nodes) {
+      maxX = std::max(maxX, node.p.x);
+      maxY = std::max(maxY, node.p.y);
+    }
+    nx_ = static_cast<int>(maxX / bucket_) + 1;
+    ny_ = static_cast<int>(maxY / bucket_) + 1;
+    buckets_.resize(static_cast<std::size_t>(nx_) * ny_);
+    for (std::size_t i = 0; i < graph.nodes.size(); ++i) update(static_cast<int>(i));
+  }
+  /// Files node k where it is now (alive) or nowhere (removed).
+  void update(int k) {
+    if (static_cast<std::size_t>(k) >= bucketOf_.size()) bucketOf_.resize(k + 1, -1);
+    const int to = graph_.nodes[k].alive ? bucketAt(graph_.nodes[k].p) : -1;
+    if (to == bucketOf_[k]) return;
+    if (bucketOf_[k] >= 0) {
+      std::vector<int>& from = buckets_[bucketOf_[k]];
+      from.erase(std::find(from.begin(), from.end(), k));
+    }
+    if (to >= 0) buckets_[to].push_back(k);
+    bucketOf_[k] = to;
+  }
+  /// The nodes within r of p, in no particular order (the checks using them only ask "any").
+  std::vector<int> within(const Vec2& p, double r) const {
+    std::vector<int> out;
+    const int x0 = clampX(p.x - r), x1 = clampX(p.x + r), y0 = clampY(p.y - r), y1 = clampY(p.y + r);
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x)
+        for (int k : buckets_[static_cast<std::size_t>(y) * nx_ + x])
+          if (distance(graph_.nodes[k].p, p) <= r) out.push_back(k);
+    return out;
+  }
+
+ private:
+  const RoadGraph& graph_;
+  double bucket_;
+  int nx_ = 1, ny_ = 1;
+  std::vector<std::vector<int>> buckets_;
+  std::vector<int> bucketOf_;
+  int clampX(double x) const { return std::clamp(static_cast<int>(std::floor(x / bucket_)), 0, nx_ - 1); }
+  int clampY(double y) const { return std::clamp(static_cast<int>(std::floor(y / bucket_)), 0, ny_ - 1); }
+  int bucketAt(const Vec2& p) const { return clampY(p.y) * nx_ + clampX(p.x); }
+};
+
 /// Where the stage may move nodes: the node index for neighbourhood queries and the longest link.
 struct Surroundings {
-  const NodeIndex& index;
-  double longestLink = 0.0;  ///< padded by how far nodes may move
-  double coverQuery = 0.0;   ///< radius around a cell holding an end of every link within coverRadius
+  const NodeIndex* index = nullptr;  ///< built before the moves (speculative steps)
+  double longestLink = 0.0;          ///< padded by how far nodes may move
+  double coverQuery = 0.0;           ///< radius around a cell holding an end of every link within coverRadius
   ReadFootprint* footprint = nullptr;  ///< what the item reads, when it runs speculatively (-threads)
+  LiveIndex* live = nullptr;           ///< instead of `index`: where the nodes are now (junction clusters)
 };
+
+/// The nodes within r of p: where they are now (live), or where `index` holds them (the caller pads r by
+/// how far nodes may have moved since).
+std::vector<int> nodesNear(const Surroundings& around, const Vec2& p, double r) {
+  return around.live ? around.live->within(p, r) : recordedWithin(*around.index, p, r, around.footprint);
+}
 
 /// The length of the graph's longest link (pw).
 double longestLink(const RoadGraph& graph) {
@@ -101,7 +159,7 @@ bool anyUncovered(const RoadGraph& graph, const Grid<std::uint8_t>& cells, const
   for (std::int64_t k : candidates) {
     const Vec2 c = patchCentre(cells, static_cast<int>(k % cells.width), static_cast<int>(k / cells.width));
     bool covered = false;
-    for (int a : recordedWithin(around.index, c, around.coverQuery, around.footprint)) {
+    for (int a : nodesNear(around, c, around.coverQuery)) {
       if (graph.nodes[a].type == NodeType::Perimeter) continue;  // perimeter links are no roads
       for (int b : graph.nodes[a].links)
         if (graph.nodes[b].type != NodeType::Perimeter &&
@@ -140,8 +198,7 @@ bool movedLinksCross(const RoadGraph& graph, const Surroundings& around, const s
     const Vec2 a = graph.nodes[m].p;
     for (int q : graph.nodes[m].links) {
       const Vec2 b = graph.nodes[q].p;
-      for (int c :
-           recordedWithin(around.index, a, distance(a, b) + around.longestLink + 1.0, around.footprint))
+      for (int c : nodesNear(around, a, distance(a, b) + around.longestLink + 1.0))
         for (int d : graph.nodes[c].links) {
           if (c == m || c == q || d == m || d == q) continue;
           if (segmentsCross(a, b, graph.nodes[c].p, graph.nodes[d].p)) return true;
@@ -462,7 +519,7 @@ struct ClusterPoint {
 /// when the cluster was rebuilt.
 bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, const std::vector<int>& inner,
                         const std::vector<std::pair<int, int>>& innerStarts, double clusterReach,
-                        const ThroughRoadOptions& options, const Surroundings& around,
+                        const ThroughRoadOptions& options, const Surroundings& around, double& longestRebuilt,
                         ThroughRoadStats& stats) {
   auto inCluster = [&](int k) {
     return std::binary_search(junctions.begin(), junctions.end(), k) ||
@@ -541,7 +598,11 @@ bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, con
     points.push_back(meet);
   }
   // Two crossings are one junction, at the least-squares crossing of all their lines, when that point
-  // lies within every one of those lines' band (the straightness rule): no road bends at it.
+  // lies within every one of those lines' band (the straightness rule): no road bends at it. Where two
+  // or more through roads meet, the junction is their crossing (where B7's placement puts it too), and a
+  // stem joins it when that crossing lies within the stem's band or within -smooth-reach of its line (as
+  // far as a node may move off its cells); a stem farther off keeps its own junction where it meets a
+  // through road, instead of bending into a point between its line and the through roads' crossing.
   for (bool merged = true; merged;) {
     merged = false;
     for (std::size_t i = 0; i < points.size() && !merged; ++i)
@@ -550,14 +611,21 @@ bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, con
         both.insert(both.end(), points[k].lines.begin(), points[k].lines.end());
         std::sort(both.begin(), both.end());
         both.erase(std::unique(both.begin(), both.end()), both.end());
-        std::vector<std::pair<Vec2, Vec2>> fit;
-        for (std::size_t l : both) fit.push_back({lines[l].centre, lines[l].direction});
+        std::vector<std::pair<Vec2, Vec2>> fit, through;
+        for (std::size_t l : both) {
+          fit.push_back({lines[l].centre, lines[l].direction});
+          if (lines[l].through) through.push_back(fit.back());
+        }
+        const bool atThrough = through.size() >= 2;
         Vec2 x = (points[i].p + points[k].p) * 0.5;
-        leastSquaresCrossing(fit, x);
+        if (!leastSquaresCrossing(atThrough ? through : fit, x) && atThrough) continue;
         bool onAll = true;
-        for (std::size_t l : both)
-          onAll = onAll && std::fabs(cross(lines[l].direction, x - lines[l].centre)) <=
-                               digitalLineBand(lines[l].direction) + options.slack + kPlacementRounding;
+        for (std::size_t l : both) {
+          double tolerance = digitalLineBand(lines[l].direction) + options.slack;
+          if (atThrough && !lines[l].through) tolerance = std::max(tolerance, options.reach);
+          onAll = onAll &&
+                  std::fabs(cross(lines[l].direction, x - lines[l].centre)) <= tolerance + kPlacementRounding;
+        }
         if (!onAll) continue;
         points[i] = {x, both};
         points.erase(points.begin() + static_cast<std::ptrdiff_t>(k));
@@ -720,14 +788,30 @@ bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, con
     for (int s = 1; s < steps && options.cells && !offCells; ++s)
       offCells = !nearRoadCell(*options.cells, a + (b - a) * (static_cast<double>(s) / steps), options.reach);
   }
-  if (offCells || rejectMoves(graph, options, around, moved, covered, stats)) {
+  // The checks look around where the nodes are now, as far as the longest link (the rebuilt ones
+  // included).
+  LiveIndex& live = *around.live;
+  double longest = around.longestLink;
+  for (const std::vector<int>* nodes : {&touched, &added})
+    for (int k : *nodes) {
+      live.update(k);
+      for (int l : graph.nodes[k].links)
+        longest = std::max(longest, distance(graph.nodes[k].p, graph.nodes[l].p));
+    }
+  Surroundings now = around;
+  now.longestLink = longest;
+  now.coverQuery = longest + options.coverRadius;
+  if (offCells || rejectMoves(graph, options, now, moved, covered, stats)) {
     for (std::size_t k = 0; k < touched.size(); ++k) graph.nodes[touched[k]] = saved[k];
     for (int k : added) {
       graph.nodes[k].links.clear();
       graph.nodes[k].alive = false;
     }
+    for (const std::vector<int>* nodes : {&touched, &added})
+      for (int k : *nodes) live.update(k);
     return false;
   }
+  longestRebuilt = longest;
   ++stats.clustersConsolidated;
   stats.junctionsRemoved +=
       junctions.size() - std::min(junctions.size(), points.size());  // (net, per cluster)
@@ -736,9 +820,12 @@ bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, con
 
 /// Finds the clusters of junctions (road nodes of three or more links) joined by short chains
 /// (ThroughRoadOptions::junctionSpan) and consolidates each (consolidateCluster), in node order.
-void consolidateJunctions(RoadGraph& graph, const ThroughRoadOptions& options, const Surroundings& around,
-                          ThroughRoadStats& stats) {
+void consolidateJunctions(RoadGraph& graph, const ThroughRoadOptions& options, ThroughRoadStats& stats) {
   const std::size_t n = graph.nodes.size();
+  LiveIndex live(graph, 4.0);
+  double longest = longestLink(graph);  // grows with the links rebuilt clusters make
+  Surroundings around;
+  around.live = &live;
   auto junction = [&](int k) { return isRoad(graph.nodes[k]) && graph.nodes[k].links.size() >= 3; };
   std::vector<int> parent(n);
   for (std::size_t i = 0; i < n; ++i) parent[i] = static_cast<int>(i);
@@ -835,8 +922,10 @@ void consolidateJunctions(RoadGraph& graph, const ThroughRoadOptions& options, c
     ++stats.clusters;
     std::sort(innerStarts[r].begin(), innerStarts[r].end());
     // The lines meet within the cluster's longest inner chain, or B1's window, of its junctions.
+    Surroundings now = around;
+    now.longestLink = longest;
     consolidateCluster(graph, members[r], inner, innerStarts[r], std::max(reach[r], options.window), options,
-                       around, stats);
+                       now, longest, stats);
   }
 }
 
@@ -927,13 +1016,12 @@ ThroughRoadStats straightenThroughRoads(RoadGraph& graph, const ThroughRoadOptio
   }
   updateIntersectionFlags(graph);
   if (options.junctionSpan > 0) {
-    // Junction clusters first, with their own index: the rest of the stage sees the junctions they leave.
-    const NodeIndex clusterIndex(graph, 4.0);
-    Surroundings around{clusterIndex, longestLink(graph)};
-    // A rebuilt cluster's links span it, and its junctions move within it.
-    around.longestLink += 2.0 * options.junctionSpan * 2.0 * roadWidth(NodeType::Primary);
-    around.coverQuery = around.longestLink + options.coverRadius;
-    consolidateJunctions(graph, options, around, stats);
+    // Junction clusters first: the rest of the stage sees the junctions they leave. The links a rebuild
+    // draws across a cluster are cut into pieces no longer than the graph's longest link before, so the
+    // rest of the stage looks no farther around a node than without clusters.
+    const double longest = longestLink(graph);
+    consolidateJunctions(graph, options, stats);
+    if (longest > 0) subdivideLongLinks(graph, std::nextafter(longest, std::numeric_limits<double>::max()));
     graph.compact();
     updateIntersectionFlags(graph);
     graph.sortLinksClockwise();
@@ -950,7 +1038,7 @@ ThroughRoadStats straightenThroughRoads(RoadGraph& graph, const ThroughRoadOptio
   // Nodes move by a few pw at most; the neighbourhood queries look that much farther.
   linkReach += 2.0 * (options.reach + options.window);
   auto surroundings = [&](const NodeIndex& index, ReadFootprint* footprint) {
-    return Surroundings{index, linkReach, coverQuery, footprint};
+    return Surroundings{&index, linkReach, coverQuery, footprint};
   };
   std::vector<int> items;
   for (std::size_t i = 0; i < n; ++i) {

@@ -296,6 +296,12 @@ TEST(JunctionClusters, TwoPrimariesSharingCellsAtAShallowCrossingBecomeOneCrossi
   }
   EXPECT_EQ(onFirst, 2);
   EXPECT_EQ(onSecond, 2);
+  // The approaches drawn straight from the crossing (4 pw to the first node left in place) are cut into
+  // links no longer than the graph's longest before (1 pw; the straight roads drawn after it may space
+  // them up to 4/3 pw), so the rest of the stage's neighbourhood queries stay their size.
+  for (std::size_t k = 0; k < g.nodes.size(); ++k)
+    for (int q : g.nodes[k].links)
+      if (g.nodes[k].alive) EXPECT_LE(distance(g.nodes[k].p, g.nodes[q].p), 1.5);
 }
 
 TEST(JunctionClusters, ALoopInsideACrossingGoesAndTheRoadsRunStraightThroughIt) {
@@ -372,4 +378,72 @@ TEST(JunctionClusters, JunctionsTheLinesKeepApartStayApart) {
   std::sort(xs.begin(), xs.end());
   EXPECT_NEAR(xs[0], -2.0, 1e-6);
   EXPECT_NEAR(xs[1], 2.0, 1e-6);
+}
+
+namespace {
+
+Vec2 unitAt(double degrees) {
+  return {std::cos(degrees * M_PI / 180), std::sin(degrees * M_PI / 180)};
+}
+
+/// Two streets crossing at O = (0, 0), one at 42 degrees (A), one at 75 degrees (B), and a stem coming in
+/// from the west at 15 degrees and ending on B at P = `offset` pw north of O; O and P are two junctions
+/// joined by a short piece of B. Returns P.
+Vec2 stemBesideACrossing(RoadGraph& g, double offset) {
+  const Vec2 a = unitAt(42), b = unitAt(75), stem = unitAt(15), p = b * offset;
+  const int o = g.addNode({0, 0}, NodeType::Secondary), q = g.addNode(p, NodeType::Secondary);
+  g.link(o, q);
+  std::vector<Vec2> aOut, aIn, bOut, bIn, west;
+  for (int k = 1; k <= 9; ++k) {
+    aOut.push_back(a * static_cast<double>(k));
+    aIn.push_back(a * -static_cast<double>(k));
+    bIn.push_back(b * -static_cast<double>(k));
+    bOut.push_back(p + b * static_cast<double>(k));
+    west.push_back(p - stem * static_cast<double>(k));
+  }
+  for (const auto& [from, points] :
+       {std::pair<int, std::vector<Vec2>>{o, aOut}, {o, aIn}, {o, bIn}, {q, bOut}, {q, west}})
+    path(g, points, from);
+  g.sortLinksClockwise();
+  return p;
+}
+
+}  // namespace
+
+TEST(JunctionClusters, AStemOffTheThroughRoadsCrossingKeepsItsOwnJunction) {
+  // P 1.5 pw north of O: the three lines form a thin triangle whose least-squares point lies in every
+  // line's band, but O lies 1.3 pw off the stem's line (more than -smooth-reach): the through roads keep
+  // their crossing at O and the stem its own junction at P, drawn straight.
+  RoadGraph g;
+  const Vec2 p = stemBesideACrossing(g, 1.5), stem = unitAt(15);
+  const ThroughRoadStats s = straightenThroughRoads(g, {});
+  EXPECT_EQ(s.clusters, 1u);
+  const std::vector<int> left = junctions(g);
+  ASSERT_EQ(left.size(), 2u);
+  int atO = -1, atP = -1;
+  for (int k : left) (distance(g.nodes[k].p, {0, 0}) < 1e-6 ? atO : atP) = k;
+  ASSERT_GE(atO, 0);
+  ASSERT_GE(atP, 0);
+  EXPECT_NEAR(distance(g.nodes[atP].p, p), 0.0, 1e-6);
+  // The stem runs straight into its junction: every node of its road on its line.
+  bool found = false;
+  for (int n : g.nodes[atP].links) {
+    const std::vector<int> r = road(g, atP, n);
+    if (r.size() < 5 || dot(g.nodes[r.back()].p - p, stem) > 0) continue;
+    found = true;
+    for (int k : r) EXPECT_NEAR(cross(stem, g.nodes[k].p - p), 0.0, 1e-6);
+  }
+  EXPECT_TRUE(found);
+}
+
+TEST(JunctionClusters, AStemWithinReachOfTheThroughRoadsCrossingJoinsIt) {
+  // P 0.9 pw north of O: O lies 0.78 pw off the stem's line, outside its band (0.61) but within
+  // -smooth-reach (1): one junction, at the through roads' crossing O.
+  RoadGraph g;
+  stemBesideACrossing(g, 0.9);
+  straightenThroughRoads(g, {});
+  const std::vector<int> left = junctions(g);
+  ASSERT_EQ(left.size(), 1u);
+  EXPECT_NEAR(distance(g.nodes[left[0]].p, {0, 0}), 0.0, 1e-6);
+  EXPECT_EQ(g.nodes[left[0]].links.size(), 5u);
 }
