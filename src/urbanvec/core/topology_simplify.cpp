@@ -36,6 +36,7 @@ struct Box {
         minY(std::min(a.y, b.y)),
         maxX(std::max(a.x, b.x)),
         maxY(std::max(a.y, b.y)) {}
+  Box(double x0, double y0, double x1, double y1) : minX(x0), minY(y0), maxX(x1), maxY(y1) {}
   bool meets(const Box& o) const {
     return minX <= o.maxX && o.minX <= maxX && minY <= o.maxY && o.minY <= maxY;
   }
@@ -68,8 +69,17 @@ class Simplifier {
     for (std::uint32_t r = 0; r < rings.size(); ++r) {
       const Ring& ring = *rings[r];
       ringStart_.push_back(static_cast<std::uint32_t>(input_.size()));
-      for (std::uint32_t i = 0; i + 1 < ring.size(); ++i)
-        input_.push_back({ring[i], ring[i + 1], Box(ring[i], ring[i + 1]), r, i, true});
+      for (std::uint32_t i = 0; i + 1 < ring.size(); ++i) {
+        const Box box(ring[i], ring[i + 1]);
+        // Runs of up to kRun consecutive segments of one ring share a bounding box, so the test of a
+        // chord against the input skips whole runs far from it (issue 21).
+        if (i % kRun == 0) runs_.push_back({box, static_cast<std::uint32_t>(input_.size()), 0});
+        Box& runBox = runs_.back().box;
+        runBox = Box(std::min(runBox.minX, box.minX), std::min(runBox.minY, box.minY),
+                     std::max(runBox.maxX, box.maxX), std::max(runBox.maxY, box.maxY));
+        input_.push_back({ring[i], ring[i + 1], box, r, i, true});
+        runs_.back().end = static_cast<std::uint32_t>(input_.size());
+      }
     }
   }
 
@@ -129,13 +139,24 @@ class Simplifier {
     const Box box(a, b);
     for (const Segment& s : output_)
       if (s.box.meets(box) && segmentsMeetInside(s.a, s.b, a, b)) return true;
-    for (const Segment& s : input_) {
-      if (!s.alive || !s.box.meets(box)) continue;
-      if (s.ring == ring_ && s.index >= i && s.index < j) continue;  // part of the section itself
-      if (segmentsMeetInside(s.a, s.b, a, b)) return true;
+    for (const Run& run : runs_) {
+      if (!run.box.meets(box)) continue;  // no segment of the run meets the chord's box
+      for (std::uint32_t k = run.begin; k < run.end; ++k) {
+        const Segment& s = input_[k];
+        if (!s.alive || !s.box.meets(box)) continue;
+        if (s.ring == ring_ && s.index >= i && s.index < j) continue;  // part of the section itself
+        if (segmentsMeetInside(s.a, s.b, a, b)) return true;
+      }
     }
     return false;
   }
+
+  static constexpr std::uint32_t kRun = 8;
+  struct Run {
+    Box box;
+    std::uint32_t begin, end;  ///< input_[begin, end)
+  };
+  std::vector<Run> runs_;
 
   const std::vector<const Ring*>& rings_;
   double tolerance_;
