@@ -171,11 +171,15 @@ void RoadFrontage::coverEdge(const Vec2& a, const Vec2& b, RingCover& cover) con
   cover.start.push_back(static_cast<std::uint32_t>(cover.intervals.size()));
 }
 
-void RoadFrontage::copyEdge(const RingCover& from, size_t edge, RingCover& cover) {
-  cover.length.push_back(from.length[edge]);
-  cover.intervals.insert(cover.intervals.end(), from.intervals.begin() + from.start[edge],
-                         from.intervals.begin() + from.start[edge + 1]);
-  cover.start.push_back(static_cast<std::uint32_t>(cover.intervals.size()));
+void RoadFrontage::copyEdges(const RingCover& from, size_t first, size_t count, RingCover& cover) {
+  if (count == 0) return;
+  cover.length.insert(cover.length.end(), from.length.begin() + static_cast<std::ptrdiff_t>(first),
+                      from.length.begin() + static_cast<std::ptrdiff_t>(first + count));
+  const std::uint32_t begin = from.start[first],
+                      shift = static_cast<std::uint32_t>(cover.intervals.size()) - begin;
+  cover.intervals.insert(cover.intervals.end(), from.intervals.begin() + begin,
+                         from.intervals.begin() + from.start[first + count]);
+  for (size_t i = first + 1; i <= first + count; ++i) cover.start.push_back(from.start[i] + shift);
 }
 
 void RoadFrontage::coverRing(const Ring& ring, RingCover& cover) const {
@@ -469,7 +473,10 @@ void prepare(SubdivisionParcel& parcel, const RegularSubdivisionOptions& options
       if (distance(a, b) <= 1e-9) continue;
       bool facing = true;
       for (double t : {0.25, 0.5, 0.75})
-        if (!frontage.within(a + (b - a) * t, near)) facing = false;
+        if (!frontage.within(a + (b - a) * t, near)) {
+          facing = false;
+          break;
+        }
       if (facing) parcel.roadEdges.push_back({a, b});
     }
   };
@@ -706,7 +713,10 @@ void childCover(const SubdivisionParcel& parent, const Polygon& child, const Cut
         const size_t n = p.edges();
         c.clear();
         frontage.coverEdge(ring[0], ring[1], c);
-        for (size_t i = (from.edge + 1) % n; i != to.edge; i = (i + 1) % n) RoadFrontage::copyEdge(p, i, c);
+        const size_t first = (from.edge + 1) % n, count = (to.edge + n - from.edge - 1) % n;
+        const size_t head = std::min(count, n - first);
+        RoadFrontage::copyEdges(p, first, head, c);
+        RoadFrontage::copyEdges(p, 0, count - head, c);
         const size_t m = ring.size();
         frontage.coverEdge(ring[m - 3], ring[m - 2], c);
         frontage.coverEdge(ring[m - 2], ring[m - 1], c);

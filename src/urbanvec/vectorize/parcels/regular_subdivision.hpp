@@ -87,8 +87,8 @@ class RoadFrontage {
   };
   /// Appends the entry of the edge a-b to `cover`.
   void coverEdge(const Vec2& a, const Vec2& b, RingCover& cover) const;
-  /// Appends edge `edge` of `from` to `cover`.
-  static void copyEdge(const RingCover& from, size_t edge, RingCover& cover);
+  /// Appends edges first .. first + count - 1 of `from` to `cover`.
+  static void copyEdges(const RingCover& from, size_t first, size_t count, RingCover& cover);
   /// The entries of every edge of a closed ring.
   void coverRing(const Ring& ring, RingCover& cover) const;
   /// longest() of a ring from its entries: the covered pieces chained along the ring.
