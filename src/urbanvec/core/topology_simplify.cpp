@@ -110,11 +110,34 @@ class Simplifier {
     if (resultSize() < kMinimumRingSize && depth + 1 < kMinimumRingSize) valid = false;
     double farthest = -1.0;
     size_t farthestIndex = i;
-    for (size_t k = i + 1; k < j; ++k) {
-      const double d = pointSegmentDistance(points[k], points[i], points[j]);
-      if (d > farthest) {
-        farthest = d;
-        farthestIndex = k;
+    const Vec2 a = points[i], b = points[j];
+    if (a.x == b.x && a.y == b.y) {
+      for (size_t k = i + 1; k < j; ++k) {
+        const double d = pointSegmentDistance(points[k], a, b);
+        if (d > farthest) {
+          farthest = d;
+          farthestIndex = k;
+        }
+      }
+    } else {
+      // pointSegmentDistance with the chord's terms and the square root of its length taken once
+      // (the same operations on the same values, so the same distances).
+      const double dx = b.x - a.x, dy = b.y - a.y;
+      const double len2 = dx * dx + dy * dy, chord = std::sqrt(len2);
+      for (size_t k = i + 1; k < j; ++k) {
+        const Vec2& p = points[k];
+        const double r = ((p.x - a.x) * dx + (p.y - a.y) * dy) / len2;
+        double d;
+        if (r <= 0.0)
+          d = std::sqrt((p.x - a.x) * (p.x - a.x) + (p.y - a.y) * (p.y - a.y));
+        else if (r >= 1.0)
+          d = std::sqrt((p.x - b.x) * (p.x - b.x) + (p.y - b.y) * (p.y - b.y));
+        else
+          d = std::fabs(((a.y - p.y) * dx - (a.x - p.x) * dy) / len2) * chord;
+        if (d > farthest) {
+          farthest = d;
+          farthestIndex = k;
+        }
       }
     }
     if (farthest > tolerance_) valid = false;

@@ -31,10 +31,7 @@ RoadFrontage::RoadFrontage(const geos::Context& geos, const MultiLineString& roa
       if (line[i] != line[i + 1]) segments_.push_back({line[i], line[i + 1]});
   if (segments_.empty()) return;
   buildGrid();
-  geos::GeomPtr lines = geos.multiLineString(roadFacing);
-  band_ = geos.own(GEOSBufferWithStyle_r(geos.handle(), lines.get(), tolerance, 2, GEOSBUF_CAP_FLAT,
-                                         GEOSBUF_JOIN_MITRE, 2.0),
-                   "buffer");
+  lines_ = roadFacing;
 }
 
 void RoadFrontage::buildGrid() {
@@ -217,6 +214,12 @@ double RoadFrontage::longestOfCover(const RingCover& cover) const {
 double RoadFrontage::longestGeos(const Polygon& parcel) const {
   if (segments_.empty()) return 0.0;
   GEOSContextHandle_t h = geos_.handle();
+  if (!band_) {  // only the checkers measure with GEOS: the band is built on first use (issue 21)
+    geos::GeomPtr lines = geos_.multiLineString(lines_);
+    band_ = geos_.own(
+        GEOSBufferWithStyle_r(h, lines.get(), tolerance_, 2, GEOSBUF_CAP_FLAT, GEOSBUF_JOIN_MITRE, 2.0),
+        "buffer");
+  }
   geos::GeomPtr polygon = geos_.polygon(parcel);
   geos::GeomPtr boundary = geos_.own(GEOSBoundary_r(h, polygon.get()), "boundary");
   geos::GeomPtr onRoad = geos_.own(GEOSIntersection_r(h, boundary.get(), band_.get()), "intersection");

@@ -102,7 +102,8 @@ class RoadFrontage {
   void buildGrid();
   const geos::Context& geos_;
   double tolerance_;
-  geos::GeomPtr band_;
+  MultiLineString lines_;       ///< the road-facing lines, for longestGeos()
+  mutable geos::GeomPtr band_;  ///< their band of half-width tolerance, built by longestGeos()
   std::vector<std::array<Vec2, 2>> segments_;
   // Uniform bucket grid over the segments' bounding boxes (cell lists stored contiguously), so a
   // query visits only the segments near a parcel edge instead of all the block's curb segments.
