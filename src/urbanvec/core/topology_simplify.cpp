@@ -66,6 +66,10 @@ struct Segment {
 class Simplifier {
  public:
   Simplifier(const std::vector<const Ring*>& rings, double tolerance) : rings_(rings), tolerance_(tolerance) {
+    size_t segments = 0;
+    for (const Ring* ring : rings) segments += ring->empty() ? 0 : ring->size() - 1;
+    input_.reserve(segments);
+    runs_.reserve(segments / kRun + rings.size());
     for (std::uint32_t r = 0; r < rings.size(); ++r) {
       const Ring& ring = *rings[r];
       ringStart_.push_back(static_cast<std::uint32_t>(input_.size()));

@@ -823,24 +823,36 @@ double estimateAspect(const SubdivisionParcel& parcel, const Crossing& from, con
   const size_t n = ring.size() - 1;
   // The extents along u and v, from the vertices about the local origin (the centroid only shifts
   // both ends of an extent).
-  double minU = 1e300, maxU = -1e300, minV = 1e300, maxV = -1e300;
+  // Two sets of running extents, for two vertices at a time (shorter dependency chains).
+  std::array<double, 2> minU{1e300, 1e300}, maxU{-1e300, -1e300}, minV{1e300, 1e300}, maxV{-1e300, -1e300};
   const Vec2 origin = index.origin;
-  auto project = [&](const Vec2& p) {
+  auto project = [&](const Vec2& p, size_t k) {
     const Vec2 d = p - origin;
     const double du = dot(d, u), dv = dot(d, v);
-    minU = std::min(minU, du);
-    maxU = std::max(maxU, du);
-    minV = std::min(minV, dv);
-    maxV = std::max(maxV, dv);
+    minU[k] = std::min(minU[k], du);
+    maxU[k] = std::max(maxU[k], du);
+    minV[k] = std::min(minV[k], dv);
+    maxV[k] = std::max(maxV[k], dv);
   };
-  project(from.point);
-  project(to.point);
+  auto projectRange = [&](size_t begin, size_t end) {
+    size_t i = begin;
+    for (; i + 1 < end; i += 2) {
+      project(ring[i], 0);
+      project(ring[i + 1], 1);
+    }
+    if (i < end) project(ring[i], 0);
+  };
+  project(from.point, 0);
+  project(to.point, 1);
   const size_t first = (from.edge + 1) % n;
-  const size_t split = first <= to.edge ? to.edge + 1 : n;
-  for (size_t i = first; i < split; ++i) project(ring[i]);
-  if (first > to.edge)
-    for (size_t i = 0; i <= to.edge; ++i) project(ring[i]);
-  const double eu = maxU - minU, ev = maxV - minV;
+  if (first <= to.edge) {
+    projectRange(first, to.edge + 1);
+  } else {
+    projectRange(first, n);
+    projectRange(0, to.edge + 1);
+  }
+  const double eu = std::max(maxU[0], maxU[1]) - std::min(minU[0], minU[1]),
+               ev = std::max(maxV[0], maxV[1]) - std::min(minV[0], minV[1]);
   const double longSide = std::max(eu, ev), shortSide = std::min(eu, ev);
   // The moments' difference turns the axis by at most about 1.5 δ / radius (the half angle of a
   // vector of length radius moved by 2√2 δ); each extent then moves by at most twice the diameter
