@@ -373,31 +373,25 @@ SplitIndex::Sums edgeTerms(const Vec2& p, const Vec2& q, const Vec2& origin) {
   return t;
 }
 
+/// The fields of SplitIndex::Sums, combined field by field.
+constexpr double SplitIndex::Sums::*kSumsFields[] = {&SplitIndex::Sums::c,
+                                                     &SplitIndex::Sums::mx,
+                                                     &SplitIndex::Sums::my,
+                                                     &SplitIndex::Sums::ixx,
+                                                     &SplitIndex::Sums::iyy,
+                                                     &SplitIndex::Sums::ixy,
+                                                     &SplitIndex::Sums::productsLocal,
+                                                     &SplitIndex::Sums::crossLocal,
+                                                     &SplitIndex::Sums::products,
+                                                     &SplitIndex::Sums::cross};
+
 SplitIndex::Sums operator+(SplitIndex::Sums a, const SplitIndex::Sums& b) {
-  a.c += b.c;
-  a.mx += b.mx;
-  a.my += b.my;
-  a.ixx += b.ixx;
-  a.iyy += b.iyy;
-  a.ixy += b.ixy;
-  a.productsLocal += b.productsLocal;
-  a.crossLocal += b.crossLocal;
-  a.products += b.products;
-  a.cross += b.cross;
+  for (const auto field : kSumsFields) a.*field += b.*field;
   return a;
 }
 
 SplitIndex::Sums operator-(SplitIndex::Sums a, const SplitIndex::Sums& b) {
-  a.c -= b.c;
-  a.mx -= b.mx;
-  a.my -= b.my;
-  a.ixx -= b.ixx;
-  a.iyy -= b.iyy;
-  a.ixy -= b.ixy;
-  a.productsLocal -= b.productsLocal;
-  a.crossLocal -= b.crossLocal;
-  a.products -= b.products;
-  a.cross -= b.cross;
+  for (const auto field : kSumsFields) a.*field -= b.*field;
   return a;
 }
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "urbanvec/core/random.hpp"
@@ -56,6 +57,28 @@ bool sameCover(const RoadFrontage::RingCover& a, const RoadFrontage::RingCover& 
   return a.intervals == b.intervals && a.start == b.start && a.length == b.length;
 }
 
+/// A random line through the square around the parcel's bounding box (its SplitIndex's origin and
+/// largest half extent): a point q on it and its direction.
+std::pair<Vec2, Vec2> randomLine(const Polygon& parcel, Rng& rng) {
+  const SplitIndex index = buildSplitIndex(parcel);
+  std::uniform_real_distribution<double> offset(-index.maxLocal, index.maxLocal),
+      angle(0.0, 6.283185307179586);
+  const Vec2 q{index.origin.x + offset(rng), index.origin.y + offset(rng)};
+  const double a = angle(rng);
+  return {q, Vec2{std::cos(a), std::sin(a)}};
+}
+
+/// Split rules with the given minimum area and aspect threshold and 0.5 cells of frontage.
+SplitRules rulesWith(double minArea, double aspectThreshold, bool residential) {
+  SplitRules rules;
+  rules.minArea = minArea;
+  rules.aspectThreshold = aspectThreshold;
+  rules.residentialRule = residential;
+  rules.minChildShare = 0.3;
+  rules.minFrontage = 0.5;
+  return rules;
+}
+
 class RealBlocks : public ::testing::TestWithParam<std::string> {};
 
 }  // namespace
@@ -65,12 +88,7 @@ TEST_P(RealBlocks, ScreenedSplitsGiveThePlainVerdictAndChildren) {
   const std::vector<Polygon> blocks = sampleBlocks(GetParam());
   ASSERT_GE(blocks.size(), 9u);
   // Rules that reject for each reason in turn: the minimum area and aspect near their typical values.
-  SplitRules rules;
-  rules.minArea = 12.0;
-  rules.aspectThreshold = 0.3;
-  rules.residentialRule = true;
-  rules.minChildShare = 0.3;
-  rules.minFrontage = 0.5;
+  const SplitRules rules = rulesWith(12.0, 0.3, true);
   RegularSubdivisionOptions options;
   Rng rng(7);
   int attempts = 0, screened = 0, accepted = 0;
@@ -81,18 +99,8 @@ TEST_P(RealBlocks, ScreenedSplitsGiveThePlainVerdictAndChildren) {
     std::vector<SubdivisionParcel> queue{SubdivisionParcel(block)};
     for (size_t next = 0; next < queue.size() && next < 12; ++next) {
       prepare(queue[next], options, road, geos);
-      double minX = 1e300, minY = 1e300, maxX = -1e300, maxY = -1e300;
-      for (const Vec2& p : queue[next].polygon.outer) {
-        minX = std::min(minX, p.x);
-        minY = std::min(minY, p.y);
-        maxX = std::max(maxX, p.x);
-        maxY = std::max(maxY, p.y);
-      }
-      std::uniform_real_distribution<double> x(minX, maxX), y(minY, maxY), angle(0.0, 6.283185307179586);
       for (int k = 0; k < 150; ++k) {
-        const Vec2 q{x(rng), y(rng)};
-        const double a = angle(rng);
-        const Vec2 dir{std::cos(a), std::sin(a)};
+        const auto [q, dir] = randomLine(queue[next].polygon, rng);
         SubdivisionParcel plainParent = queue[next], screenParent = queue[next];
         std::array<SubdivisionParcel, 2> plain, screen;
         const SplitVerdict expected = splitAlong(plainParent, q, dir, rules, road, geos, plain, false);
@@ -134,18 +142,8 @@ TEST_P(RealBlocks, ThresholdsOneUlpFromTheChildrensValuesGiveThePlainVerdict) {
     SubdivisionParcel parcel(block);
     prepare(parcel, options, road, geos);
     if (!parcel.polygon.holes.empty()) continue;  // the screen leaves parcels with holes alone
-    double minX = 1e300, minY = 1e300, maxX = -1e300, maxY = -1e300;
-    for (const Vec2& p : parcel.polygon.outer) {
-      minX = std::min(minX, p.x);
-      minY = std::min(minY, p.y);
-      maxX = std::max(maxX, p.x);
-      maxY = std::max(maxY, p.y);
-    }
-    std::uniform_real_distribution<double> x(minX, maxX), y(minY, maxY), angle(0.0, 6.283185307179586);
     for (int k = 0; k < 40; ++k) {
-      const Vec2 q{x(rng), y(rng)};
-      const double a = angle(rng);
-      const Vec2 dir{std::cos(a), std::sin(a)};
+      const auto [q, dir] = randomLine(parcel.polygon, rng);
       SplitRules loose;
       loose.minArea = 0.0;
       loose.aspectThreshold = 0.0;
@@ -184,10 +182,7 @@ TEST_P(RealBlocks, InheritedFrontageEntriesEqualAFreshMeasure) {
   geos::Context geos;
   const std::vector<Polygon> blocks = sampleBlocks(GetParam());
   ASSERT_GE(blocks.size(), 9u);
-  SplitRules rules;
-  rules.minArea = 6.0;
-  rules.aspectThreshold = 0.2;
-  rules.minFrontage = 0.5;
+  const SplitRules rules = rulesWith(6.0, 0.2, false);
   RegularSubdivisionOptions options;
   int inherited = 0, checked = 0, fronting = 0, coveredEdges = 0, bareEdges = 0;
   std::int64_t seed = 1;
