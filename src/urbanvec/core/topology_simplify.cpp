@@ -36,6 +36,7 @@ struct Box {
         minY(std::min(a.y, b.y)),
         maxX(std::max(a.x, b.x)),
         maxY(std::max(a.y, b.y)) {}
+  Box(double x0, double y0, double x1, double y1) : minX(x0), minY(y0), maxX(x1), maxY(y1) {}
   bool meets(const Box& o) const {
     return minX <= o.maxX && o.minX <= maxX && minY <= o.maxY && o.minY <= maxY;
   }
@@ -65,11 +66,24 @@ struct Segment {
 class Simplifier {
  public:
   Simplifier(const std::vector<const Ring*>& rings, double tolerance) : rings_(rings), tolerance_(tolerance) {
+    size_t segments = 0;
+    for (const Ring* ring : rings) segments += ring->empty() ? 0 : ring->size() - 1;
+    input_.reserve(segments);
+    runs_.reserve(segments / kRun + rings.size());
     for (std::uint32_t r = 0; r < rings.size(); ++r) {
       const Ring& ring = *rings[r];
       ringStart_.push_back(static_cast<std::uint32_t>(input_.size()));
-      for (std::uint32_t i = 0; i + 1 < ring.size(); ++i)
-        input_.push_back({ring[i], ring[i + 1], Box(ring[i], ring[i + 1]), r, i, true});
+      for (std::uint32_t i = 0; i + 1 < ring.size(); ++i) {
+        const Box box(ring[i], ring[i + 1]);
+        // Runs of up to kRun consecutive segments of one ring share a bounding box, so the test of a
+        // chord against the input skips whole runs far from it (issue 21).
+        if (i % kRun == 0) runs_.push_back({box, static_cast<std::uint32_t>(input_.size()), 0});
+        Box& runBox = runs_.back().box;
+        runBox = Box(std::min(runBox.minX, box.minX), std::min(runBox.minY, box.minY),
+                     std::max(runBox.maxX, box.maxX), std::max(runBox.maxY, box.maxY));
+        input_.push_back({ring[i], ring[i + 1], box, r, i, true});
+        runs_.back().end = static_cast<std::uint32_t>(input_.size());
+      }
     }
   }
 
@@ -100,11 +114,34 @@ class Simplifier {
     if (resultSize() < kMinimumRingSize && depth + 1 < kMinimumRingSize) valid = false;
     double farthest = -1.0;
     size_t farthestIndex = i;
-    for (size_t k = i + 1; k < j; ++k) {
-      const double d = pointSegmentDistance(points[k], points[i], points[j]);
-      if (d > farthest) {
-        farthest = d;
-        farthestIndex = k;
+    const Vec2 a = points[i], b = points[j];
+    if (a.x == b.x && a.y == b.y) {
+      for (size_t k = i + 1; k < j; ++k) {
+        const double d = pointSegmentDistance(points[k], a, b);
+        if (d > farthest) {
+          farthest = d;
+          farthestIndex = k;
+        }
+      }
+    } else {
+      // pointSegmentDistance with the chord's terms and the square root of its length taken once
+      // (the same operations on the same values, so the same distances).
+      const double dx = b.x - a.x, dy = b.y - a.y;
+      const double len2 = dx * dx + dy * dy, chord = std::sqrt(len2);
+      for (size_t k = i + 1; k < j; ++k) {
+        const Vec2& p = points[k];
+        const double r = ((p.x - a.x) * dx + (p.y - a.y) * dy) / len2;
+        double d;
+        if (r <= 0.0)
+          d = std::sqrt((p.x - a.x) * (p.x - a.x) + (p.y - a.y) * (p.y - a.y));
+        else if (r >= 1.0)
+          d = std::sqrt((p.x - b.x) * (p.x - b.x) + (p.y - b.y) * (p.y - b.y));
+        else
+          d = std::fabs(((a.y - p.y) * dx - (a.x - p.x) * dy) / len2) * chord;
+        if (d > farthest) {
+          farthest = d;
+          farthestIndex = k;
+        }
       }
     }
     if (farthest > tolerance_) valid = false;
@@ -129,13 +166,24 @@ class Simplifier {
     const Box box(a, b);
     for (const Segment& s : output_)
       if (s.box.meets(box) && segmentsMeetInside(s.a, s.b, a, b)) return true;
-    for (const Segment& s : input_) {
-      if (!s.alive || !s.box.meets(box)) continue;
-      if (s.ring == ring_ && s.index >= i && s.index < j) continue;  // part of the section itself
-      if (segmentsMeetInside(s.a, s.b, a, b)) return true;
+    for (const Run& run : runs_) {
+      if (!run.box.meets(box)) continue;  // no segment of the run meets the chord's box
+      for (std::uint32_t k = run.begin; k < run.end; ++k) {
+        const Segment& s = input_[k];
+        if (!s.alive || !s.box.meets(box)) continue;
+        if (s.ring == ring_ && s.index >= i && s.index < j) continue;  // part of the section itself
+        if (segmentsMeetInside(s.a, s.b, a, b)) return true;
+      }
     }
     return false;
   }
+
+  static constexpr std::uint32_t kRun = 8;
+  struct Run {
+    Box box;
+    std::uint32_t begin, end;  ///< input_[begin, end)
+  };
+  std::vector<Run> runs_;
 
   const std::vector<const Ring*>& rings_;
   double tolerance_;

@@ -3,8 +3,10 @@
 // output unchanged), and keeps rings from crossing where plain Douglas-Peucker would not.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "urbanvec/core/geos.hpp"
 #include "urbanvec/core/topology_simplify.hpp"
@@ -90,4 +92,45 @@ TEST(TopologySimplify, InteriorContactOfSegments) {
   // two points are equal), so the segments overlap along their length.
   EXPECT_TRUE(segmentsMeetInside({0, 0}, {2, 6}, {0, 0}, {1, 3}));
   EXPECT_TRUE(segmentsMeetInside({0, 0}, {2, 6}, {2, 6}, {1, 3}));
+}
+
+TEST(TopologySimplify, MatchesGeosOnHairpinsWhoseChordsWouldCrossTheOtherArm) {
+  // Two long jittered arms joined at one end, 0.05 or more apart: a chord over one arm's jitter would
+  // cross the other arm, whose segments lie far along the ring (issue 21: the test skips runs of segments
+  // whose box misses the chord's, and must still find these).
+  geos::Context ctx;
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> jitter(-0.3, 0.3), unit(0.0, 1.0);
+  int compared = 0, blocked = 0;
+  for (int k = 0; k < 60; ++k) {
+    const double angle = unit(rng) * 6.283185307179586;
+    const Vec2 u{std::cos(angle), std::sin(angle)}, v{-u.y, u.x};
+    const Vec2 c{372000.0 + k * 53.0, 4843000.0 + k * 7.0};
+    auto at = [&](double x, double y) { return Vec2{c.x + u.x * x + v.x * y, c.y + u.y * x + v.y * y}; };
+    const int steps = 20 + k % 40;
+    // Arm A jitters about y = 0, arm B about y = 0.15 but always 0.05 above A: each arm's chord
+    // (within tolerance 2 of its arm) passes on the far side of some vertices of the other arm.
+    std::vector<double> a(static_cast<size_t>(steps) + 1), b(a.size());
+    for (size_t i = 0; i < a.size(); ++i) {
+      const bool end = i == 0 || i + 1 == a.size();
+      a[i] = end ? 0.0 : jitter(rng);
+      b[i] = end ? 1.2 : std::max(0.15 + jitter(rng), a[i] + 0.05);
+    }
+    Polygon p;
+    for (int i = 0; i <= steps; ++i) p.outer.push_back(at(2.0 * i, a[static_cast<size_t>(i)]));
+    for (int i = steps; i >= 0; --i) p.outer.push_back(at(2.0 * i, b[static_cast<size_t>(i)]));
+    p.outer.push_back(p.outer.front());
+    geos::GeomPtr g = ctx.polygon(p);
+    if (GEOSisValid_r(ctx.handle(), g.get()) != 1) continue;
+    for (double tolerance : {0.5, 1.0, 2.0}) {
+      const Polygon ours = simplifyPreservingTopology(p, tolerance);
+      const Polygon theirs = geosSimplify(ctx, p, tolerance);
+      ASSERT_EQ(ours.outer, theirs.outer) << "hairpin " << k << " tolerance " << tolerance;
+      ++compared;
+      // Plain Douglas-Peucker would keep about 4 points at tolerance 2; the arms keep more.
+      blocked += tolerance == 2.0 && ours.outer.size() > 8;
+    }
+  }
+  EXPECT_GT(compared, 150);
+  EXPECT_GT(blocked, 20);  // 29 of the 60 at tolerance 2
 }

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <tuple>
 
 #include "urbanvec/core/topology_simplify.hpp"
 #include "urbanvec/vectorize/parcels/spine_subdivision.hpp"
@@ -29,10 +31,7 @@ RoadFrontage::RoadFrontage(const geos::Context& geos, const MultiLineString& roa
       if (line[i] != line[i + 1]) segments_.push_back({line[i], line[i + 1]});
   if (segments_.empty()) return;
   buildGrid();
-  geos::GeomPtr lines = geos.multiLineString(roadFacing);
-  band_ = geos.own(GEOSBufferWithStyle_r(geos.handle(), lines.get(), tolerance, 2, GEOSBUF_CAP_FLAT,
-                                         GEOSBUF_JOIN_MITRE, 2.0),
-                   "buffer");
+  lines_ = roadFacing;
 }
 
 void RoadFrontage::buildGrid() {
@@ -130,20 +129,16 @@ double RoadFrontage::longest(const Polygon& parcel) const {
 
 double RoadFrontage::longestOnRing(const Ring& ring) const {
   if (segments_.empty() || ring.size() < 3) return 0.0;
-  const size_t n = ring.size() - 1;
+  coverRing(ring, ringCover_);
+  return longestOfCover(ringCover_);
+}
+
+void RoadFrontage::coverEdge(const Vec2& a, const Vec2& b, RingCover& cover) const {
+  // Covered intervals (in length units along the edge) from collinear road-facing segments, merged.
   const double tol = tolerance_;
-  // Covered intervals (in length units along each edge) from collinear road-facing segments, merged
-  // per edge; edge i owns cover_[coverStart_[i], coverStart_[i + 1]).
-  cover_.clear();
-  coverStart_.assign(n + 1, 0);
-  edgeLength_.assign(n, 0.0);
-  double coveredTotal = 0.0;
-  for (size_t i = 0; i < n; ++i) {
-    coverStart_[i] = static_cast<std::uint32_t>(cover_.size());
-    const Vec2 a = ring[i], b = ring[i + 1];
-    const double len = urbanvec::distance(a, b);
-    edgeLength_[i] = len;
-    if (len <= 0.0) continue;
+  const double len = urbanvec::distance(a, b);
+  cover.length.push_back(len);
+  if (len > 0.0 && !segments_.empty()) {
     const Vec2 d = (b - a) / len;
     const Vec2 nrm{-d.y, d.x};
     const double minX = std::min(a.x, b.x) - tol, maxX = std::max(a.x, b.x) + tol;
@@ -162,33 +157,56 @@ double RoadFrontage::longestOnRing(const Ring& ring) const {
       if (hi > lo) edgeCover_.emplace_back(lo, hi);
     }
     std::sort(edgeCover_.begin(), edgeCover_.end());
-    const size_t first = cover_.size();
+    const size_t first = cover.intervals.size();
     for (const auto& iv : edgeCover_) {
-      if (cover_.size() > first && iv.first <= cover_.back().second + tol)
-        cover_.back().second = std::max(cover_.back().second, iv.second);
+      if (cover.intervals.size() > first && iv.first <= cover.intervals.back().second + tol)
+        cover.intervals.back().second = std::max(cover.intervals.back().second, iv.second);
       else
-        cover_.push_back(iv);
+        cover.intervals.push_back(iv);
     }
-    for (size_t k = first; k < cover_.size(); ++k) coveredTotal += cover_[k].second - cover_[k].first;
   }
-  coverStart_[n] = static_cast<std::uint32_t>(cover_.size());
+  cover.start.push_back(static_cast<std::uint32_t>(cover.intervals.size()));
+}
+
+void RoadFrontage::copyEdges(const RingCover& from, size_t first, size_t count, RingCover& cover) {
+  if (count == 0) return;
+  cover.length.insert(cover.length.end(), from.length.begin() + static_cast<std::ptrdiff_t>(first),
+                      from.length.begin() + static_cast<std::ptrdiff_t>(first + count));
+  const std::uint32_t begin = from.start[first],
+                      shift = static_cast<std::uint32_t>(cover.intervals.size()) - begin;
+  cover.intervals.insert(cover.intervals.end(), from.intervals.begin() + begin,
+                         from.intervals.begin() + from.start[first + count]);
+  for (size_t i = first + 1; i <= first + count; ++i) cover.start.push_back(from.start[i] + shift);
+}
+
+void RoadFrontage::coverRing(const Ring& ring, RingCover& cover) const {
+  cover.clear();
+  for (size_t i = 0; i + 1 < ring.size(); ++i) coverEdge(ring[i], ring[i + 1], cover);
+}
+
+double RoadFrontage::longestOfCover(const RingCover& cover) const {
+  const size_t n = cover.edges();
+  if (segments_.empty() || n < 2) return 0.0;
+  const double tol = tolerance_;
+  double coveredTotal = 0.0;
+  for (const auto& iv : cover.intervals) coveredTotal += iv.second - iv.first;
   // Chain the covered pieces along the ring; two laps join a run across the ring's start.
   double best = 0.0, run = 0.0;
   for (size_t k = 0; k < 2 * n; ++k) {
     const size_t i = k % n;
-    const size_t begin = coverStart_[i], end = coverStart_[i + 1];
+    const size_t begin = cover.start[i], end = cover.start[i + 1];
     if (begin == end) {
-      if (edgeLength_[i] > tol) run = 0.0;
+      if (cover.length[i] > tol) run = 0.0;
       continue;
     }
-    const double firstLength = cover_[begin].second - cover_[begin].first;
-    run = cover_[begin].first <= tol ? run + firstLength : firstLength;
+    const double firstLength = cover.intervals[begin].second - cover.intervals[begin].first;
+    run = cover.intervals[begin].first <= tol ? run + firstLength : firstLength;
     best = std::max(best, run);
     for (size_t j = begin + 1; j < end; ++j) {
-      run = cover_[j].second - cover_[j].first;
+      run = cover.intervals[j].second - cover.intervals[j].first;
       best = std::max(best, run);
     }
-    if (cover_[end - 1].second < edgeLength_[i] - tol) run = 0.0;
+    if (cover.intervals[end - 1].second < cover.length[i] - tol) run = 0.0;
   }
   return std::min(best, coveredTotal);
 }
@@ -196,6 +214,12 @@ double RoadFrontage::longestOnRing(const Ring& ring) const {
 double RoadFrontage::longestGeos(const Polygon& parcel) const {
   if (segments_.empty()) return 0.0;
   GEOSContextHandle_t h = geos_.handle();
+  if (!band_) {  // only the checkers measure with GEOS: the band is built on first use (issue 21)
+    geos::GeomPtr lines = geos_.multiLineString(lines_);
+    band_ = geos_.own(
+        GEOSBufferWithStyle_r(h, lines.get(), tolerance_, 2, GEOSBUF_CAP_FLAT, GEOSBUF_JOIN_MITRE, 2.0),
+        "buffer");
+  }
   geos::GeomPtr polygon = geos_.polygon(parcel);
   geos::GeomPtr boundary = geos_.own(GEOSBoundary_r(h, polygon.get()), "boundary");
   geos::GeomPtr onRoad = geos_.own(GEOSIntersection_r(h, boundary.get(), band_.get()), "intersection");
@@ -264,13 +288,15 @@ std::string SplitStats::shortfallReason() const {
   return "no acceptable split (mostly " + std::string(verdictName(static_cast<SplitVerdict>(worst))) + ")";
 }
 
-SplitVerdict checkSplit(const Polygon& parent, const Polygon& a, const Polygon& b, const SplitRules& rules,
-                        const RoadFrontage& frontage) {
-  return checkSplit(area(parent), aspectOf(parent), a, b, rules, frontage);
-}
+namespace {
 
-SplitVerdict checkSplit(double parentArea, double parentAspect, const Polygon& a, const Polygon& b,
-                        const SplitRules& rules, const RoadFrontage& frontage) {
+/// The four constraints in order: size, rectangularity, residential variation, then road access, the
+/// costliest, last. `frontageOf(k)` measures child k's longest road frontage. The children's areas
+/// and aspects are left in `areas` and `aspects` once computed.
+template <class Frontage>
+SplitVerdict checkChildren(double parentArea, double parentAspect, const Polygon& a, const Polygon& b,
+                           const SplitRules& rules, Frontage&& frontageOf, std::array<double, 2>& areas,
+                           std::array<double, 2>& aspects) {
   // Each ring's signed area once: the children's areas (as area() sums them) and the orientation their
   // second moments need.
   thread_local std::vector<double> ringsA, ringsB;
@@ -285,10 +311,12 @@ SplitVerdict checkSplit(double parentArea, double parentAspect, const Polygon& a
     return total;
   };
   const double areaA = ringAreas(a, ringsA), areaB = ringAreas(b, ringsB), areaP = parentArea;
+  areas = {areaA, areaB};
   if (areaA < rules.minArea || areaB < rules.minArea || areaA <= 0.0 || areaB <= 0.0)
     return SplitVerdict::TooSmall;
   const double aspectA = orientedBox(a, ringsA.data()).aspect(),
                aspectB = orientedBox(b, ringsB.data()).aspect();
+  aspects = {aspectA, aspectB};
   if (rules.compareParentAspect) {
     const bool ok = parentAspect >= rules.aspectThreshold
                         ? (aspectA >= parentAspect && aspectB >= parentAspect)
@@ -303,17 +331,129 @@ SplitVerdict checkSplit(double parentArea, double parentAspect, const Polygon& a
   if (rules.residentialRule && (areaA < rules.minChildShare * areaP || areaB < rules.minChildShare * areaP))
     return SplitVerdict::UnequalResidential;
   // Road access last: it is the only constraint that needs more than the polygons' moments.
-  if (frontage.longest(a) < rules.minFrontage || frontage.longest(b) < rules.minFrontage)
+  if (frontageOf(0) < rules.minFrontage || frontageOf(1) < rules.minFrontage)
     return SplitVerdict::NoRoadAccess;
   return SplitVerdict::Accepted;
 }
 
+}  // namespace
+
+SplitVerdict checkSplit(const Polygon& parent, const Polygon& a, const Polygon& b, const SplitRules& rules,
+                        const RoadFrontage& frontage) {
+  return checkSplit(area(parent), aspectOf(parent), a, b, rules, frontage);
+}
+
+SplitVerdict checkSplit(double parentArea, double parentAspect, const Polygon& a, const Polygon& b,
+                        const SplitRules& rules, const RoadFrontage& frontage) {
+  std::array<double, 2> areas{}, aspects{};
+  return checkChildren(
+      parentArea, parentAspect, a, b, rules, [&](int k) { return frontage.longest(k == 0 ? a : b); }, areas,
+      aspects);
+}
+
 SubdivisionParcel::SubdivisionParcel(Polygon p) : polygon(std::move(p)), area(urbanvec::area(polygon)) {}
+
+namespace {
+
+/// The SplitIndex terms of the edge p-q (absolute coordinates) about `origin`.
+SplitIndex::Sums edgeTerms(const Vec2& p, const Vec2& q, const Vec2& origin) {
+  const Vec2 a = p - origin, b = q - origin;
+  const double c = a.x * b.y - a.y * b.x;
+  SplitIndex::Sums t;
+  t.c = c;
+  t.mx = (a.x + b.x) * c;
+  t.my = (a.y + b.y) * c;
+  t.ixx = (a.x * a.x + a.x * b.x + b.x * b.x) * c;
+  t.iyy = (a.y * a.y + a.y * b.y + b.y * b.y) * c;
+  t.ixy = (a.x * b.y + 2.0 * a.x * a.y + 2.0 * b.x * b.y + b.x * a.y) * c;
+  t.productsLocal = std::fabs(a.x * b.y) + std::fabs(a.y * b.x);
+  t.crossLocal = std::fabs(c);
+  t.products = std::fabs(p.x * q.y) + std::fabs(p.y * q.x);
+  t.cross = std::fabs(p.x * q.y - p.y * q.x);
+  return t;
+}
+
+/// The fields of SplitIndex::Sums, combined field by field.
+constexpr double SplitIndex::Sums::*kSumsFields[] = {&SplitIndex::Sums::c,
+                                                     &SplitIndex::Sums::mx,
+                                                     &SplitIndex::Sums::my,
+                                                     &SplitIndex::Sums::ixx,
+                                                     &SplitIndex::Sums::iyy,
+                                                     &SplitIndex::Sums::ixy,
+                                                     &SplitIndex::Sums::productsLocal,
+                                                     &SplitIndex::Sums::crossLocal,
+                                                     &SplitIndex::Sums::products,
+                                                     &SplitIndex::Sums::cross};
+
+SplitIndex::Sums operator+(SplitIndex::Sums a, const SplitIndex::Sums& b) {
+  for (const auto field : kSumsFields) a.*field += b.*field;
+  return a;
+}
+
+SplitIndex::Sums operator-(SplitIndex::Sums a, const SplitIndex::Sums& b) {
+  for (const auto field : kSumsFields) a.*field -= b.*field;
+  return a;
+}
+
+constexpr std::uint32_t kRunEdges = 8;  ///< edges per run of SplitIndex
+
+}  // namespace
+
+SplitIndex buildSplitIndex(const Polygon& polygon) {
+  SplitIndex index;
+  index.built = true;
+  double minX = 1e300, minY = 1e300, maxX = -1e300, maxY = -1e300;
+  auto extend = [&](const Ring& ring) {
+    for (const Vec2& p : ring) {
+      minX = std::min(minX, p.x);
+      minY = std::min(minY, p.y);
+      maxX = std::max(maxX, p.x);
+      maxY = std::max(maxY, p.y);
+    }
+  };
+  extend(polygon.outer);
+  for (const Ring& h : polygon.holes) extend(h);
+  if (minX > maxX) return index;
+  index.origin = {0.5 * (minX + maxX), 0.5 * (minY + maxY)};
+  index.maxAbs = std::max({std::fabs(minX), std::fabs(maxX), std::fabs(minY), std::fabs(maxY)});
+  index.maxLocal = std::max(maxX - index.origin.x, maxY - index.origin.y) * (1.0 + 1e-12);
+  index.diagonal = std::hypot(maxX - minX, maxY - minY);
+  auto addRuns = [&](const Ring& ring) {
+    const std::uint32_t n = ring.size() < 2 ? 0 : static_cast<std::uint32_t>(ring.size() - 1);
+    for (std::uint32_t first = 0; first < n; first += kRunEdges) {
+      SplitIndex::Run run;
+      run.first = first;
+      run.last = std::min(n, first + kRunEdges);
+      double x0 = ring[first].x, x1 = x0, y0 = ring[first].y, y1 = y0;
+      for (std::uint32_t i = first; i < run.last; ++i) {
+        const Vec2& p = ring[i + 1];
+        x0 = std::min(x0, p.x);
+        x1 = std::max(x1, p.x);
+        y0 = std::min(y0, p.y);
+        y1 = std::max(y1, p.y);
+        run.longestEdge = std::max(run.longestEdge, distance(ring[i], p));
+      }
+      run.centre = {0.5 * (x0 + x1), 0.5 * (y0 + y1)};
+      run.half = {0.5 * (x1 - x0), 0.5 * (y1 - y0)};
+      index.runs.push_back(run);
+    }
+    index.ringRuns.push_back(static_cast<std::uint32_t>(index.runs.size()));
+  };
+  addRuns(polygon.outer);
+  for (const Ring& h : polygon.holes) addRuns(h);
+  const Ring& outer = polygon.outer;
+  index.prefix.reserve(outer.size());
+  index.prefix.emplace_back();
+  for (size_t i = 0; i + 1 < outer.size(); ++i)
+    index.prefix.push_back(index.prefix.back() + edgeTerms(outer[i], outer[i + 1], index.origin));
+  return index;
+}
 
 void prepare(SubdivisionParcel& parcel, const RegularSubdivisionOptions& options,
              const RoadFrontage& frontage, const geos::Context& geos) {
   parcel.prepared = true;
-  parcel.aspect = aspectOf(parcel.polygon);
+  if (!parcel.aspectKnown) parcel.aspect = aspectOf(parcel.polygon);
+  parcel.aspectKnown = true;
   // GEOS's TopologyPreservingSimplifier rules in plain code (core/topology_simplify.hpp): the same
   // copy without a GEOS geometry and two quadtrees per parcel (issue 21).
   Polygon simplified;
@@ -323,18 +463,32 @@ void prepare(SubdivisionParcel& parcel, const RegularSubdivisionOptions& options
   // An edge of the simplified copy faces the road when it runs along road-facing lines, i.e. its
   // quarter points all lie within the simplification tolerance of them.
   const double near = options.simplifyTolerance + options.frontageTolerance;
+  parcel.roadEdges.clear();
   auto scanRing = [&](const Ring& ring) {
     for (size_t i = 0; i + 1 < ring.size(); ++i) {
       const Vec2 a = ring[i], b = ring[i + 1];
       if (distance(a, b) <= 1e-9) continue;
       bool facing = true;
       for (double t : {0.25, 0.5, 0.75})
-        if (!frontage.within(a + (b - a) * t, near)) facing = false;
+        if (!frontage.within(a + (b - a) * t, near)) {
+          facing = false;
+          break;
+        }
       if (facing) parcel.roadEdges.push_back({a, b});
     }
   };
   scanRing(simplified.outer);
   for (const Ring& h : simplified.holes) scanRing(h);
+  (void)geos;  // the simplification no longer needs GEOS
+  parcel.index = buildSplitIndex(parcel.polygon);
+  // The E1 parcels, which every try starts from, measure their edges' road frontage here once; a
+  // parcel cut from another inherits its parent's entries.
+  if (parcel.cover.empty()) {
+    parcel.cover.resize(1 + parcel.polygon.holes.size());
+    frontage.coverRing(parcel.polygon.outer, parcel.cover[0]);
+    for (size_t h = 0; h < parcel.polygon.holes.size(); ++h)
+      frontage.coverRing(parcel.polygon.holes[h], parcel.cover[h + 1]);
+  }
 }
 
 namespace {
@@ -356,46 +510,72 @@ enum class LineSplit {
   Degenerate,  ///< left to GEOS
 };
 
-/// Splits a polygon by the piece of the line q + s·dir that lies inside it nearest q, when that piece
-/// runs from the outer ring to the outer ring (each hole goes to the side that contains it) or from a
-/// hole back to the same hole (it cuts off the pocket of parcel in a bay of the hole). Degenerate
-/// cases are left to GEOS: the line through a vertex or along an edge of any ring, or a hole whose
-/// side is unclear because it touches a ring of the cut.
-LineSplit splitPolygonByLine(const Polygon& polygon, const Vec2& q, const Vec2& dir,
-                             std::array<Polygon, 2>& out) {
-  struct Crossing {
-    double s;
-    size_t ring;  ///< 0 for the outer ring, h + 1 for hole h
-    size_t edge;
-    Vec2 point;
-  };
+/// Where the line crosses a ring: at `point`, `s` along the line, on edge `edge` of ring `ring`.
+struct Crossing {
+  double s;
+  size_t ring;  ///< 0 for the outer ring, h + 1 for hole h
+  size_t edge;
+  Vec2 point;
+};
+
+/// Which ring of the parent each ring of a child comes from: an arc of ring `ring` closed by the cut
+/// (walked from crossing a to b, or from b to a), a copy of it, or something else (reversed).
+struct RingSource {
+  enum class Kind { ArcFromA, ArcFromB, Copy, Fresh } kind;
+  size_t ring;
+};
+
+/// How a cut made its two children, so their rings' road frontage entries can be inherited.
+struct CutRecipe {
+  Crossing a, b;
+  std::array<std::vector<RingSource>, 2> rings;  ///< per child: outer ring, then holes
+};
+
+/// The piece of the line q + s·dir inside the polygon nearest q, as crossings a and b of its rings.
+/// Runs of edges whose bounding box lies clearly on one side of the line are skipped: their edges,
+/// with both ends farther than 1e-6 cells from the line on one side, pass none of the tests below
+/// (such an edge is no crossing, not along the line and not through a vertex at the thresholds
+/// used), so the crossings are those a scan of every edge finds, in the same order. Degenerate cases
+/// are left to GEOS: the line through a vertex or along an edge of any ring.
+LineSplit findCut(const Polygon& polygon, const SplitIndex& index, const Vec2& q, const Vec2& dir,
+                  Crossing& a, Crossing& b) {
   thread_local std::vector<Crossing> crossings;  // reused: one split test per try and parcel
   crossings.clear();
+  const double spreadX = std::fabs(dir.y), spreadY = std::fabs(dir.x);
+  const double qSize = std::fabs(q.x) + std::fabs(q.y);
   auto addCrossings = [&](const Ring& ring, size_t ringIndex) {
-    double next = ring.empty() ? 0.0 : cross(ring[0] - q, dir);
-    for (size_t i = 0; i + 1 < ring.size(); ++i) {
-      const Vec2 p0 = ring[i], e = ring[i + 1] - ring[i];
-      // Both ends clearly on one side of the line (most edges): no crossing, not along the edge and
-      // not through a vertex, so the tests below would skip the edge too; their thresholds are far
-      // inside these margins.
-      const double side0 = next, side1 = cross(ring[i + 1] - q, dir);
-      next = side1;
-      if ((side0 > 1e-9 && side1 > 1e-9) || (side0 < -1e-9 && side1 < -1e-9)) {
-        const double near = std::min(std::fabs(side0), std::fabs(side1));
-        if (near > 1e-6 * std::max(std::fabs(side0), std::fabs(side1))) continue;
+    for (std::uint32_t r = index.ringRuns[ringIndex]; r < index.ringRuns[ringIndex + 1]; ++r) {
+      const SplitIndex::Run& run = index.runs[r];
+      const double centreSide = cross(run.centre - q, dir);
+      const double reach = run.half.x * spreadX + run.half.y * spreadY;
+      const double margin = 1e-6 + 1e-9 * run.longestEdge +
+                            1e-13 * (std::fabs(run.centre.x) + std::fabs(run.centre.y) + qSize + reach);
+      if (centreSide - reach > margin || centreSide + reach < -margin) continue;
+      double next = cross(ring[run.first] - q, dir);
+      for (size_t i = run.first; i < run.last; ++i) {
+        const Vec2 p0 = ring[i], e = ring[i + 1] - ring[i];
+        // Both ends clearly on one side of the line (most edges): no crossing, not along the edge and
+        // not through a vertex, so the tests below would skip the edge too; their thresholds are far
+        // inside these margins.
+        const double side0 = next, side1 = cross(ring[i + 1] - q, dir);
+        next = side1;
+        if ((side0 > 1e-9 && side1 > 1e-9) || (side0 < -1e-9 && side1 < -1e-9)) {
+          const double near = std::min(std::fabs(side0), std::fabs(side1));
+          if (near > 1e-6 * std::max(std::fabs(side0), std::fabs(side1))) continue;
+        }
+        const double denom = cross(dir, e);
+        const double scale = length(e);
+        if (scale <= 0.0) continue;
+        if (std::fabs(denom) <= 1e-12 * scale) {
+          if (std::fabs(side0) <= 1e-9) return false;  // along the edge
+          continue;
+        }
+        const double u = side0 / denom;
+        if (u < -1e-12 || u > 1.0 + 1e-12) continue;
+        if (u < 1e-9 || u > 1.0 - 1e-9) return false;  // through a vertex
+        const double s = cross(p0 - q, e) / denom;
+        crossings.push_back({s, ringIndex, i, p0 + e * u});
       }
-      const double denom = cross(dir, e);
-      const double scale = length(e);
-      if (scale <= 0.0) continue;
-      if (std::fabs(denom) <= 1e-12 * scale) {
-        if (std::fabs(side0) <= 1e-9) return false;  // along the edge
-        continue;
-      }
-      const double u = side0 / denom;
-      if (u < -1e-12 || u > 1.0 + 1e-12) continue;
-      if (u < 1e-9 || u > 1.0 - 1e-9) return false;  // through a vertex
-      const double s = cross(p0 - q, e) / denom;
-      crossings.push_back({s, ringIndex, i, p0 + e * u});
     }
     return true;
   };
@@ -417,62 +597,402 @@ LineSplit splitPolygonByLine(const Polygon& polygon, const Vec2& q, const Vec2& 
     }
   }
   if (crossings[pick + 1].s - crossings[pick].s <= 1e-9) return LineSplit::Degenerate;
-  const Crossing& a = crossings[pick];
-  const Crossing& b = crossings[pick + 1];
+  a = crossings[pick];
+  b = crossings[pick + 1];
   if (a.ring != b.ring) return LineSplit::NoSplit;
+  return LineSplit::Split;
+}
+
+/// Splits a polygon along the piece a-b of a line (findCut), when that piece runs from the outer ring
+/// to the outer ring (each hole goes to the side that contains it) or from a hole back to the same
+/// hole (it cuts off the pocket of parcel in a bay of the hole). Degenerate, left to GEOS: a hole
+/// whose side is unclear because it touches a ring of the cut.
+LineSplit cutPolygon(const Polygon& polygon, const Crossing& a, const Crossing& b,
+                     std::array<Polygon, 2>& out, CutRecipe& recipe) {
+  recipe.a = a;
+  recipe.b = b;
+  recipe.rings[0].clear();
+  recipe.rings[1].clear();
   const Ring& ring = a.ring == 0 ? polygon.outer : polygon.holes[a.ring - 1];
   const size_t n = ring.size() - 1;
-  auto walk = [&](const Crossing& from, const Crossing& to) {
-    Ring r{from.point};
+  auto walk = [&](const Crossing& from, const Crossing& to, Ring& r) {
+    r.clear();
     r.reserve(n + 3);
+    r.push_back(from.point);
     for (size_t i = (from.edge + 1) % n;; i = (i + 1) % n) {
       r.push_back(ring[i]);
       if (i == to.edge) break;
     }
     r.push_back(to.point);
     r.push_back(from.point);
-    return r;
   };
+  using Kind = RingSource::Kind;
   if (a.ring != 0) {
     // The piece runs from a hole back to the same hole across the mouth of a bay of it: the chord
     // and the arc of the hole around the bay close the pocket of parcel in the bay (the smaller of the
     // two rings: the other one also holds the hole), and the rest of the parcel gets the hole grown by
     // that pocket. The other holes go to the side that contains them.
-    Ring first = walk(a, b), second = walk(b, a);
+    Ring first, second;
+    walk(a, b, first);
+    walk(b, a, second);
     const bool firstIsPocket = std::fabs(signedArea(first)) < std::fabs(signedArea(second));
     Ring& pocket = firstIsPocket ? first : second;
     Ring& grown = firstIsPocket ? second : first;
     const bool outerPositive = signedArea(polygon.outer) > 0.0, holePositive = signedArea(ring) > 0.0;
-    if ((signedArea(pocket) > 0.0) != outerPositive) std::reverse(pocket.begin(), pocket.end());
-    if ((signedArea(grown) > 0.0) != holePositive) std::reverse(grown.begin(), grown.end());
+    const Kind pocketArc = firstIsPocket ? Kind::ArcFromA : Kind::ArcFromB;
+    const Kind grownArc = firstIsPocket ? Kind::ArcFromB : Kind::ArcFromA;
+    bool pocketReversed = false, grownReversed = false;
+    if ((signedArea(pocket) > 0.0) != outerPositive) {
+      std::reverse(pocket.begin(), pocket.end());
+      pocketReversed = true;
+    }
+    if ((signedArea(grown) > 0.0) != holePositive) {
+      std::reverse(grown.begin(), grown.end());
+      grownReversed = true;
+    }
     out[0] = Polygon{std::move(pocket), {}};
     out[1] = Polygon{polygon.outer, {std::move(grown)}};
+    recipe.rings[0].push_back({pocketReversed ? Kind::Fresh : pocketArc, a.ring});
+    recipe.rings[1].push_back({Kind::Copy, 0});
+    recipe.rings[1].push_back({grownReversed ? Kind::Fresh : grownArc, a.ring});
     for (size_t h = 0; h < polygon.holes.size(); ++h) {
       if (h + 1 == a.ring) continue;
       const Ring& hole = polygon.holes[h];
       const bool inFirst = insideRing(hole[0], out[0].outer), inSecond = insideRing(hole[1], out[0].outer);
       if (inFirst != inSecond) return LineSplit::Degenerate;
       out[inFirst ? 0 : 1].holes.push_back(hole);
+      recipe.rings[inFirst ? 0 : 1].push_back({Kind::Copy, h + 1});
     }
     return LineSplit::Split;
   }
-  out[0] = Polygon{walk(a, b), {}};
-  out[1] = Polygon{walk(b, a), {}};
+  out[0].holes.clear();
+  out[1].holes.clear();
+  walk(a, b, out[0].outer);
+  walk(b, a, out[1].outer);
+  recipe.rings[0].push_back({Kind::ArcFromA, 0});
+  recipe.rings[1].push_back({Kind::ArcFromB, 0});
   // The chord meets no hole, so each hole lies wholly on one side. A valid hole touches the outer ring
   // in at most one point, so two of its vertices agree on the side unless one lies on that point.
-  for (const Ring& hole : polygon.holes) {
+  for (size_t h = 0; h < polygon.holes.size(); ++h) {
+    const Ring& hole = polygon.holes[h];
     const bool first = insideRing(hole[0], out[0].outer), second = insideRing(hole[1], out[0].outer);
     if (first != second) return LineSplit::Degenerate;
     out[first ? 0 : 1].holes.push_back(hole);
+    recipe.rings[first ? 0 : 1].push_back({Kind::Copy, h + 1});
   }
   return LineSplit::Split;
 }
 
+/// The road frontage entries of child k's rings from its parent's and the cut.
+void childCover(const SubdivisionParcel& parent, const Polygon& child, const CutRecipe& recipe, int k,
+                const RoadFrontage& frontage, std::vector<RoadFrontage::RingCover>& cover) {
+  const std::vector<RingSource>& sources = recipe.rings[static_cast<size_t>(k)];
+  cover.resize(sources.size());
+  for (size_t j = 0; j < sources.size(); ++j) {
+    const RingSource& source = sources[j];
+    const Ring& ring = j == 0 ? child.outer : child.holes[j - 1];
+    RoadFrontage::RingCover& c = cover[j];
+    switch (source.kind) {
+      case RingSource::Kind::Copy:
+        c = parent.cover[source.ring];
+        break;
+      case RingSource::Kind::Fresh:
+        frontage.coverRing(ring, c);
+        break;
+      case RingSource::Kind::ArcFromA:
+      case RingSource::Kind::ArcFromB: {
+        // The ring is walk(from, to): from, parent vertices from.edge + 1 .. to.edge, to, from. Its
+        // edges between parent vertices are the parent's edges from.edge + 1 .. to.edge - 1.
+        const bool fromA = source.kind == RingSource::Kind::ArcFromA;
+        const Crossing& from = fromA ? recipe.a : recipe.b;
+        const Crossing& to = fromA ? recipe.b : recipe.a;
+        const RoadFrontage::RingCover& p = parent.cover[source.ring];
+        const size_t n = p.edges();
+        c.clear();
+        frontage.coverEdge(ring[0], ring[1], c);
+        const size_t first = (from.edge + 1) % n, count = (to.edge + n - from.edge - 1) % n;
+        const size_t head = std::min(count, n - first);
+        RoadFrontage::copyEdges(p, first, head, c);
+        RoadFrontage::copyEdges(p, 0, count - head, c);
+        const size_t m = ring.size();
+        frontage.coverEdge(ring[m - 3], ring[m - 2], c);
+        frontage.coverEdge(ring[m - 2], ring[m - 1], c);
+        break;
+      }
+    }
+  }
+}
+
+/// The longest road frontage of a polygon from its rings' entries, as RoadFrontage::longest().
+double longestOfCovers(const std::vector<RoadFrontage::RingCover>& cover, const RoadFrontage& frontage) {
+  double best = frontage.longestOfCover(cover[0]);
+  for (size_t j = 1; j < cover.size(); ++j) best = std::max(best, frontage.longestOfCover(cover[j]));
+  return best;
+}
+
+/// Area, centroid and central second moments of the child walk(from, to) of the outer ring from the
+/// parcel's SplitIndex, with bounds on how far the exact computation on the child's ring (absolute
+/// coordinates, checkChildren) can lie from them.
+struct ChildEstimate {
+  double area = 0.0;
+  double areaMargin = 0.0;    ///< bound on |area - exact area|, cells²
+  double momentMargin = 0.0;  ///< bound on the difference of each central second moment, cells²
+  Vec2 centroid;              ///< local coordinates
+  double sxx = 0.0, syy = 0.0, sxy = 0.0;
+  size_t edges = 0;
+};
+
+ChildEstimate estimateChild(const SubdivisionParcel& parcel, const Crossing& from, const Crossing& to) {
+  const SplitIndex& index = parcel.index;
+  const Ring& ring = parcel.polygon.outer;
+  const size_t n = ring.size() - 1;
+  const size_t first = (from.edge + 1) % n;
+  const size_t count = (to.edge + n - from.edge - 1) % n;  // parent edges first .. to.edge - 1
+  const auto& prefix = index.prefix;
+  SplitIndex::Sums sums = first + count <= n ? prefix[first + count] - prefix[first]
+                                             : (prefix[n] - prefix[first]) + prefix[first + count - n];
+  sums = sums + edgeTerms(from.point, ring[first], index.origin) +
+         edgeTerms(ring[to.edge], to.point, index.origin) + edgeTerms(to.point, from.point, index.origin);
+  ChildEstimate e;
+  e.edges = count + 3;
+  const double unit = 1.12e-16;  // unit roundoff, rounded up
+  const double m = static_cast<double>(e.edges), whole = static_cast<double>(n);
+  // Bounds on the rounding of checkChildren's sums over the child's ring in absolute coordinates and
+  // of the prefix differences here (local coordinates, sums over up to 2n + 3 terms). A cross product
+  // p × q errs by at most u (|px qy| + |py qx| + |p × q|) (u the unit roundoff); a sum of k terms by
+  // k u times the sum of their magnitudes. Both doubled for safety.
+  const SplitIndex::Sums& ringSums = prefix[n];
+  const double products = sums.products, crosses = sums.cross;
+  const double productsLocal = ringSums.productsLocal + sums.productsLocal,
+               crossesLocal = ringSums.crossLocal + sums.crossLocal;
+  const double twiceAreaError = 2.0 * unit * (products + (m + 2.0) * crosses) +
+                                2.0 * unit * (productsLocal + (2.0 * whole + 6.0) * crossesLocal);
+  e.area = 0.5 * std::fabs(sums.c);
+  e.areaMargin = 0.5 * twiceAreaError + 1e-300;
+  if (!(e.area > 16.0 * e.areaMargin)) return e;
+  const double orientation = sums.c >= 0.0 ? 1.0 : -1.0;
+  const double a = e.area;
+  e.centroid = {orientation * sums.mx / 6.0 / a, orientation * sums.my / 6.0 / a};
+  e.sxx = orientation * sums.ixx / 12.0 / a - e.centroid.x * e.centroid.x;
+  e.syy = orientation * sums.iyy / 12.0 / a - e.centroid.y * e.centroid.y;
+  e.sxy = orientation * sums.ixy / 24.0 / a - e.centroid.x * e.centroid.y;
+  // A central second moment (e.g. Σ(x² + x x' + x'²) c / 12a - cx², c the edges' cross products)
+  // computed in coordinates up to X from the origin: the rounding of its k-term sums and of the
+  // area it divides by errs by at most about (2k + 6) u X² Σ|c| / a plus 4 u X²; the rounding of
+  // each c moves it by at most 2 D² u (|px qy| + |py qx| + |c|) / a, D the largest distance of a
+  // vertex from the centroid (the moment depends on c only through coordinates about the centroid).
+  // Doubled for safety, for checkChildren's absolute and this function's local coordinates.
+  const double big = index.maxAbs * (1.0 + 1e-12), local = index.maxLocal, reach = index.diagonal;
+  auto momentError = [&](double coordinate, double terms, double sumCross, double sumProducts) {
+    return 2.0 * unit *
+           ((2.0 * terms + 6.0) * coordinate * coordinate * sumCross / a + 4.0 * coordinate * coordinate +
+            2.0 * reach * reach * (sumProducts + sumCross) / a);
+  };
+  e.momentMargin = momentError(big, m, crosses, products) +
+                   momentError(local, 2.0 * whole + 3.0, crossesLocal, productsLocal);
+  return e;
+}
+
+/// The PCA aspect of child walk(from, to) from its estimate, as orientedBox() computes it, and a bound
+/// on its difference from orientedBox's value; a negative bound when no useful bound exists (near-round
+/// moments, whose axis the rounding could turn anywhere).
+double estimateAspect(const SubdivisionParcel& parcel, const Crossing& from, const Crossing& to,
+                      const ChildEstimate& e, double& bound) {
+  bound = -1.0;
+  const double delta = e.momentMargin;
+  const double cos2 = e.sxx - e.syy, sin2 = 2.0 * e.sxy;
+  const double radius = std::sqrt(cos2 * cos2 + sin2 * sin2);
+  if (!(radius > 8.0 * delta)) return 0.0;
+  Vec2 u;
+  if (cos2 >= 0.0) {
+    u.x = std::sqrt(0.5 * (1.0 + cos2 / radius));
+    u.y = sin2 / (2.0 * radius * u.x);
+  } else {
+    u.y = std::copysign(std::sqrt(0.5 * (1.0 - cos2 / radius)), sin2);
+    u.x = sin2 / (2.0 * radius * u.y);
+  }
+  const Vec2 v{-u.y, u.x};
+  const SplitIndex& index = parcel.index;
+  const Ring& ring = parcel.polygon.outer;
+  const size_t n = ring.size() - 1;
+  // The extents along u and v, from the vertices about the local origin (the centroid only shifts
+  // both ends of an extent).
+  // Two sets of running extents, for two vertices at a time (shorter dependency chains).
+  std::array<double, 2> minU{1e300, 1e300}, maxU{-1e300, -1e300}, minV{1e300, 1e300}, maxV{-1e300, -1e300};
+  const Vec2 origin = index.origin;
+  auto project = [&](const Vec2& p, size_t k) {
+    const Vec2 d = p - origin;
+    const double du = dot(d, u), dv = dot(d, v);
+    minU[k] = std::min(minU[k], du);
+    maxU[k] = std::max(maxU[k], du);
+    minV[k] = std::min(minV[k], dv);
+    maxV[k] = std::max(maxV[k], dv);
+  };
+  auto projectRange = [&](size_t begin, size_t end) {
+    size_t i = begin;
+    for (; i + 1 < end; i += 2) {
+      project(ring[i], 0);
+      project(ring[i + 1], 1);
+    }
+    if (i < end) project(ring[i], 0);
+  };
+  project(from.point, 0);
+  project(to.point, 1);
+  const size_t first = (from.edge + 1) % n;
+  if (first <= to.edge) {
+    projectRange(first, to.edge + 1);
+  } else {
+    projectRange(first, n);
+    projectRange(0, to.edge + 1);
+  }
+  const double eu = std::max(maxU[0], maxU[1]) - std::min(minU[0], minU[1]),
+               ev = std::max(maxV[0], maxV[1]) - std::min(minV[0], minV[1]);
+  const double longSide = std::max(eu, ev), shortSide = std::min(eu, ev);
+  // The moments' difference turns the axis by at most about 1.5 δ / radius (the half angle of a
+  // vector of length radius moved by 2√2 δ); each extent then moves by at most twice the diameter
+  // times that angle, plus the rounding of the projections.
+  const double unit = 1.12e-16, reach = index.diagonal;
+  const double turn = 4.0 * delta / (radius - 3.0 * delta) + 1e-13;
+  const double extentError = 2.0 * reach * turn + 32.0 * unit * (index.maxAbs + reach);
+  if (!(longSide > 4.0 * extentError)) return 0.0;
+  bound = 4.0 * extentError / longSide + 1e-12;
+  return shortSide / longSide;
+}
+
+/// The verdict of checkChildren on the outer-to-outer cut a-b of a parcel without holes when the
+/// estimates make it certain to be a rejection for size, rectangularity or residential variation;
+/// nothing otherwise (then the children are built and checked exactly).
+std::optional<SplitVerdict> screenCut(const SubdivisionParcel& parcel, const Crossing& a, const Crossing& b,
+                                      const SplitRules& rules) {
+  const ChildEstimate first = estimateChild(parcel, a, b), second = estimateChild(parcel, b, a);
+  auto surelyBelow = [](const ChildEstimate& e, double limit) { return e.area + e.areaMargin < limit; };
+  auto surelyAtLeast = [](const ChildEstimate& e, double limit) { return e.area - e.areaMargin >= limit; };
+  // Size: area < minArea or area <= 0.
+  for (const ChildEstimate* e : {&first, &second})
+    if (surelyBelow(*e, rules.minArea) || e->area + e->areaMargin <= 0.0) return SplitVerdict::TooSmall;
+  for (const ChildEstimate* e : {&first, &second})
+    if (!surelyAtLeast(*e, rules.minArea) || !(e->area - e->areaMargin > 0.0)) return std::nullopt;
+  // Rectangularity against the threshold (or the parent's aspect), strictly when the parent is below it.
+  const double parentAspect = parcel.aspect;
+  const bool strict = !(parentAspect >= rules.aspectThreshold);
+  const double limit = rules.compareParentAspect || strict ? parentAspect : rules.aspectThreshold;
+  bool surePass = true;
+  for (const auto& [from, to, e] : {std::tuple{&a, &b, &first}, std::tuple{&b, &a, &second}}) {
+    double bound = -1.0;
+    const double aspect = estimateAspect(parcel, *from, *to, *e, bound);
+    if (bound < 0.0) {
+      surePass = false;
+      continue;
+    }
+    if (aspect + bound < limit) return SplitVerdict::TooRectangular;
+    if (!(aspect - bound > limit)) surePass = false;
+  }
+  if (!surePass) return std::nullopt;
+  if (rules.residentialRule) {
+    const double least = rules.minChildShare * parcel.area;
+    if (surelyBelow(first, least) || surelyBelow(second, least)) return SplitVerdict::UnequalResidential;
+    if (!surelyAtLeast(first, least) || !surelyAtLeast(second, least)) return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+/// Resets a child slot for a new polygon whose area and aspect are known.
+void setChild(SubdivisionParcel& child, Polygon&& polygon, double area, double aspect, bool aspectKnown) {
+  child.polygon = std::move(polygon);
+  child.area = area;
+  child.aspect = aspect;
+  child.aspectKnown = aspectKnown;
+  child.prepared = false;
+  child.roadEdges.clear();
+  child.index.built = false;
+}
+
 }  // namespace
+
+SplitVerdict splitAlong(SubdivisionParcel& parcel, const Vec2& q, const Vec2& dir, const SplitRules& rules,
+                        const RoadFrontage& frontage, const geos::Context& geos,
+                        std::array<SubdivisionParcel, 2>& out, bool screen) {
+  if (!parcel.index.built) parcel.index = buildSplitIndex(parcel.polygon);
+  if (!parcel.aspectKnown) {
+    parcel.aspect = aspectOf(parcel.polygon);
+    parcel.aspectKnown = true;
+  }
+  if (parcel.cover.empty()) {
+    parcel.cover.resize(1 + parcel.polygon.holes.size());
+    frontage.coverRing(parcel.polygon.outer, parcel.cover[0]);
+    for (size_t h = 0; h < parcel.polygon.holes.size(); ++h)
+      frontage.coverRing(parcel.polygon.holes[h], parcel.cover[h + 1]);
+  }
+  // Transfer to the original: the piece of the perpendicular line inside the original parcel that is
+  // nearest the sampled point (Q18). Plain code, GEOS in the degenerate cases.
+  if (parcel.polygon.outer.size() >= 4) {
+    Crossing a{}, b{};
+    const LineSplit cut = findCut(parcel.polygon, parcel.index, q, dir, a, b);
+    if (cut == LineSplit::NoSplit) return SplitVerdict::BadGeometry;
+    if (cut == LineSplit::Split) {
+      if (screen && a.ring == 0 && parcel.polygon.holes.empty())
+        if (const std::optional<SplitVerdict> verdict = screenCut(parcel, a, b, rules)) return *verdict;
+      thread_local std::array<Polygon, 2> children;
+      thread_local CutRecipe recipe;
+      if (cutPolygon(parcel.polygon, a, b, children, recipe) == LineSplit::Split) {
+        std::array<double, 2> areas{}, aspects{};
+        auto frontageOf = [&](int k) {
+          std::vector<RoadFrontage::RingCover>& cover = out[static_cast<size_t>(k)].cover;
+          childCover(parcel, children[static_cast<size_t>(k)], recipe, k, frontage, cover);
+          return longestOfCovers(cover, frontage);
+        };
+        const SplitVerdict verdict = checkChildren(parcel.area, parcel.aspect, children[0], children[1],
+                                                   rules, frontageOf, areas, aspects);
+        if (verdict == SplitVerdict::Accepted)
+          for (size_t k = 0; k < 2; ++k) setChild(out[k], std::move(children[k]), areas[k], aspects[k], true);
+        return verdict;
+      }
+    }
+  }
+  double minX = 1e300, minY = 1e300, maxX = -1e300, maxY = -1e300;
+  for (const Vec2& p : parcel.polygon.outer) {
+    minX = std::min(minX, p.x);
+    minY = std::min(minY, p.y);
+    maxX = std::max(maxX, p.x);
+    maxY = std::max(maxY, p.y);
+  }
+  const double reach = std::hypot(maxX - minX, maxY - minY) + 1.0;
+  GEOSContextHandle_t h = geos.handle();
+  geos::GeomPtr polygon = geos.polygon(parcel.polygon);
+  geos::GeomPtr line = geos.lineString({q - dir * reach, q + dir * reach});
+  geos::GeomPtr inside = geos.own(GEOSIntersection_r(h, line.get(), polygon.get()), "intersection");
+  const MultiLineString pieces = geos.toLines(inside.get());
+  const LineString* chord = nullptr;
+  double best = 1e300;
+  for (const LineString& piece : pieces) {
+    for (size_t i = 0; i + 1 < piece.size(); ++i) {
+      const double d = distanceToSegment(q, piece[i], piece[i + 1]);
+      if (d < best) {
+        best = d;
+        chord = &piece;
+      }
+    }
+  }
+  if (!chord || length(*chord) <= 1e-9) return SplitVerdict::BadGeometry;
+  const Vec2 s = chord->front(), e = chord->back();
+  const Vec2 along = (e - s) / distance(s, e);
+  const MultiLineString cutLine{{s - along * kOvershoot, e + along * kOvershoot}};
+  MultiPolygon faces = facesInside(geos, polygon.get(), cutLine);
+  if (faces.size() != 2) return SplitVerdict::BadGeometry;
+  const SplitVerdict verdict = checkSplit(parcel.area, parcel.aspect, faces[0], faces[1], rules, frontage);
+  if (verdict == SplitVerdict::Accepted) {
+    for (size_t k = 0; k < 2; ++k) {
+      const double faceArea = urbanvec::area(faces[k]);
+      setChild(out[k], std::move(faces[k]), faceArea, 1.0, false);
+      out[k].cover.clear();
+    }
+  }
+  return verdict;
+}
 
 SplitVerdict trySplit(SubdivisionParcel& parcel, const SplitRules& rules,
                       const RegularSubdivisionOptions& options, const RoadFrontage& frontage,
-                      const geos::Context& geos, Rng& rng, std::array<Polygon, 2>& out) {
+                      const geos::Context& geos, Rng& rng, std::array<SubdivisionParcel, 2>& out) {
   if (!parcel.prepared) prepare(parcel, options, frontage, geos);
   if (parcel.roadEdges.empty()) return SplitVerdict::NoRoadAccess;
 
@@ -493,61 +1013,23 @@ SplitVerdict trySplit(SubdivisionParcel& parcel, const SplitRules& rules,
   const Vec2 q = a + (b - a) * t;
   const Vec2 along = (b - a) / distance(a, b);
   const Vec2 normal{-along.y, along.x};
+  return splitAlong(parcel, q, normal, rules, frontage, geos, out);
+}
 
-  // Transfer to the original: the piece of the perpendicular line inside the original parcel that is
-  // nearest the sampled point (Q18). Plain code, GEOS in the degenerate cases.
-  if (parcel.polygon.outer.size() >= 4) {
-    std::array<Polygon, 2> children;
-    const LineSplit split = splitPolygonByLine(parcel.polygon, q, normal, children);
-    if (split == LineSplit::NoSplit) return SplitVerdict::BadGeometry;
-    if (split == LineSplit::Split) {
-      const SplitVerdict verdict =
-          checkSplit(parcel.area, parcel.aspect, children[0], children[1], rules, frontage);
-      if (verdict == SplitVerdict::Accepted) out = std::move(children);
-      return verdict;
-    }
-  }
-  double minX = 1e300, minY = 1e300, maxX = -1e300, maxY = -1e300;
-  for (const Vec2& p : parcel.polygon.outer) {
-    minX = std::min(minX, p.x);
-    minY = std::min(minY, p.y);
-    maxX = std::max(maxX, p.x);
-    maxY = std::max(maxY, p.y);
-  }
-  const double reach = std::hypot(maxX - minX, maxY - minY) + 1.0;
-  GEOSContextHandle_t h = geos.handle();
-  geos::GeomPtr polygon = geos.polygon(parcel.polygon);
-  geos::GeomPtr line = geos.lineString({q - normal * reach, q + normal * reach});
-  geos::GeomPtr inside = geos.own(GEOSIntersection_r(h, line.get(), polygon.get()), "intersection");
-  const MultiLineString pieces = geos.toLines(inside.get());
-  const LineString* chord = nullptr;
-  double best = 1e300;
-  for (const LineString& piece : pieces) {
-    for (size_t i = 0; i + 1 < piece.size(); ++i) {
-      const double d = distanceToSegment(q, piece[i], piece[i + 1]);
-      if (d < best) {
-        best = d;
-        chord = &piece;
-      }
-    }
-  }
-  if (!chord || length(*chord) <= 1e-9) return SplitVerdict::BadGeometry;
-  const Vec2 s = chord->front(), e = chord->back();
-  const Vec2 dir = (e - s) / distance(s, e);
-  const MultiLineString cut{{s - dir * kOvershoot, e + dir * kOvershoot}};
-  MultiPolygon faces = facesInside(geos, polygon.get(), cut);
-  if (faces.size() != 2) return SplitVerdict::BadGeometry;
-  const SplitVerdict verdict = checkSplit(parcel.area, parcel.aspect, faces[0], faces[1], rules, frontage);
-  if (verdict == SplitVerdict::Accepted) {
-    out[0] = std::move(faces[0]);
-    out[1] = std::move(faces[1]);
-  }
+SplitVerdict trySplit(SubdivisionParcel& parcel, const SplitRules& rules,
+                      const RegularSubdivisionOptions& options, const RoadFrontage& frontage,
+                      const geos::Context& geos, Rng& rng, std::array<Polygon, 2>& out) {
+  std::array<SubdivisionParcel, 2> children;
+  const SplitVerdict verdict = trySplit(parcel, rules, options, frontage, geos, rng, children);
+  if (verdict == SplitVerdict::Accepted)
+    for (size_t k = 0; k < 2; ++k) out[k] = std::move(children[k].polygon);
   return verdict;
 }
 
 bool subdivide(std::vector<SubdivisionParcel>& parcels, int target, const SplitRules& rules,
                const RegularSubdivisionOptions& options, const RoadFrontage& frontage,
                const geos::Context& geos, Rng& rng, SplitStats& stats) {
+  std::array<SubdivisionParcel, 2> children;  // reused by every attempt
   while (static_cast<int>(parcels.size()) < target) {
     size_t largest = 0;
     for (size_t i = 1; i < parcels.size(); ++i)
@@ -559,15 +1041,14 @@ bool subdivide(std::vector<SubdivisionParcel>& parcels, int target, const SplitR
         index = std::uniform_int_distribution<size_t>(0, parcels.size() - 2)(rng);
         if (index >= largest) ++index;  // a random *other* parcel
       }
-      std::array<Polygon, 2> children;
       const SplitVerdict verdict = trySplit(parcels[index], rules, options, frontage, geos, rng, children);
       if (verdict != SplitVerdict::Accepted) {
         ++stats.rejected[static_cast<int>(verdict)];
         continue;
       }
       ++stats.accepted;
-      parcels[index] = SubdivisionParcel(std::move(children[0]));
-      parcels.emplace_back(std::move(children[1]));
+      parcels[index] = std::move(children[0]);
+      parcels.push_back(std::move(children[1]));
       split = true;
     }
     if (!split) return false;

@@ -70,6 +70,30 @@ class RoadFrontage {
   bool within(const Vec2& p, double limit) const;
   bool empty() const { return segments_.empty(); }
 
+  /// The road-facing parts of each edge of a ring, as longest() measures them: edge i owns the merged
+  /// covered intervals intervals[start[i], start[i + 1]) (lengths along the edge from its first point)
+  /// and is length[i] long. An edge's entry depends only on its two end points, so a parcel cut from
+  /// another keeps its parent's entries for the edges it inherits (issue 21).
+  struct RingCover {
+    std::vector<std::pair<double, double>> intervals;
+    std::vector<std::uint32_t> start{0};
+    std::vector<double> length;
+    void clear() {
+      intervals.clear();
+      start.assign(1, 0);
+      length.clear();
+    }
+    size_t edges() const { return length.size(); }
+  };
+  /// Appends the entry of the edge a-b to `cover`.
+  void coverEdge(const Vec2& a, const Vec2& b, RingCover& cover) const;
+  /// Appends edges first .. first + count - 1 of `from` to `cover`.
+  static void copyEdges(const RingCover& from, size_t first, size_t count, RingCover& cover);
+  /// The entries of every edge of a closed ring.
+  void coverRing(const Ring& ring, RingCover& cover) const;
+  /// longest() of a ring from its entries: the covered pieces chained along the ring.
+  double longestOfCover(const RingCover& cover) const;
+
  private:
   double longestOnRing(const Ring& ring) const;
   /// Collects into candidates_ each segment registered in a grid cell that the edge a-b, widened by
@@ -78,7 +102,8 @@ class RoadFrontage {
   void buildGrid();
   const geos::Context& geos_;
   double tolerance_;
-  geos::GeomPtr band_;
+  MultiLineString lines_;       ///< the road-facing lines, for longestGeos()
+  mutable geos::GeomPtr band_;  ///< their band of half-width tolerance, built by longestGeos()
   std::vector<std::array<Vec2, 2>> segments_;
   // Uniform bucket grid over the segments' bounding boxes (cell lists stored contiguously), so a
   // query visits only the segments near a parcel edge instead of all the block's curb segments.
@@ -92,9 +117,7 @@ class RoadFrontage {
   mutable std::vector<std::uint32_t> lastSeen_;  ///< per segment, the query that last collected it
   mutable std::uint32_t query_ = 0;
   mutable std::vector<std::pair<double, double>> edgeCover_;
-  mutable std::vector<std::pair<double, double>> cover_;  ///< merged intervals of all edges of a ring
-  mutable std::vector<std::uint32_t> coverStart_;         ///< per edge, its first interval in cover_
-  mutable std::vector<double> edgeLength_;
+  mutable RingCover ringCover_;
 };
 
 /// The four constraints, with the block's numbers filled in.
@@ -120,13 +143,49 @@ SplitVerdict checkSplit(const Polygon& parent, const Polygon& a, const Polygon& 
 SplitVerdict checkSplit(double parentArea, double parentAspect, const Polygon& a, const Polygon& b,
                         const SplitRules& rules, const RoadFrontage& frontage);
 
+/// What every split attempt on one parcel shares (issue 21), built once per parcel: per ring, runs of
+/// up to 8 edges with their bounding boxes, so an attempt visits only the edges near its cut line;
+/// for the outer ring, prefix sums of the area and moment terms about a local origin, so the children's
+/// areas and moments come from two prefix differences and three cut terms instead of new rings.
+struct SplitIndex {
+  struct Run {
+    Vec2 centre, half;        ///< bounding box of the run's vertices
+    double longestEdge = 0;   ///< cells
+    std::uint32_t first = 0;  ///< edges [first, last) of the ring
+    std::uint32_t last = 0;
+  };
+  /// Sums over the outer ring's edges p-q of c = cross(p - origin, q - origin) and the moment terms
+  /// c·(px + qx), c·(py + qy), c·(px² + px qx + qx²), c·(py² + py qy + qy²),
+  /// c·(px qy + 2 px py + 2 qx qy + qx py) (local coordinates), and for the error bounds the sums of
+  /// |px qy| + |py qx| and of |c| in local and in absolute coordinates.
+  struct Sums {
+    double c = 0, mx = 0, my = 0, ixx = 0, iyy = 0, ixy = 0;
+    double productsLocal = 0, crossLocal = 0, products = 0, cross = 0;
+  };
+  Vec2 origin;
+  double maxAbs = 0.0;    ///< largest |coordinate| of the rings (absolute frame), cells
+  double maxLocal = 0.0;  ///< largest |coordinate - origin| of the rings, cells
+  double diagonal = 0.0;  ///< of the rings' bounding box, cells
+  std::vector<Run> runs;
+  std::vector<std::uint32_t> ringRuns{0};  ///< ring r owns runs[ringRuns[r], ringRuns[r + 1])
+  std::vector<Sums> prefix;                ///< outer ring: prefix[k] sums edges 0..k-1
+  bool built = false;
+};
+SplitIndex buildSplitIndex(const Polygon& polygon);
+
 /// A parcel during subdivision, with its simplified copy and road-facing edges computed on first use.
 struct SubdivisionParcel {
   Polygon polygon;
   double area = 0.0;
   bool prepared = false;
   double aspect = 1.0;                         ///< PCA aspect of `polygon`, set by prepare()
+  bool aspectKnown = false;                    ///< `aspect` already holds it (split check of the cut)
   std::vector<std::array<Vec2, 2>> roadEdges;  ///< road-facing edges of the simplified copy
+  SplitIndex index;                            ///< set by prepare()
+  /// Road frontage entries of every edge of each ring (outer, then holes), inherited from the parent
+  /// for the edges it shares; empty = not known yet.
+  std::vector<RoadFrontage::RingCover> cover;
+  SubdivisionParcel() = default;
   explicit SubdivisionParcel(Polygon p);
 };
 
@@ -148,6 +207,21 @@ void prepare(SubdivisionParcel& parcel, const RegularSubdivisionOptions& options
 SplitVerdict trySplit(SubdivisionParcel& parcel, const SplitRules& rules,
                       const RegularSubdivisionOptions& options, const RoadFrontage& frontage,
                       const geos::Context& geos, Rng& rng, std::array<Polygon, 2>& out);
+/// The same, the children as subdivision parcels that carry their area, aspect and the road frontage
+/// entries of their edges.
+SplitVerdict trySplit(SubdivisionParcel& parcel, const SplitRules& rules,
+                      const RegularSubdivisionOptions& options, const RoadFrontage& frontage,
+                      const geos::Context& geos, Rng& rng, std::array<SubdivisionParcel, 2>& out);
+
+/// The split of a prepared parcel along the piece of the line q + s·dir nearest q (the second half
+/// of trySplit, after the random draws). With `screen`, a cut whose children clearly fail the size,
+/// rectangularity or residential rule is rejected from the parcel's SplitIndex before any child ring is
+/// built: the children's areas and moments come from prefix sums with a bound on their rounding
+/// error, and only a verdict the bound makes certain is taken (else the children are built and
+/// checked as without `screen`), so the verdict is the same either way.
+SplitVerdict splitAlong(SubdivisionParcel& parcel, const Vec2& q, const Vec2& dir, const SplitRules& rules,
+                        const RoadFrontage& frontage, const geos::Context& geos,
+                        std::array<SubdivisionParcel, 2>& out, bool screen = true);
 
 /// Splits (largest first, then random parcels) until `target` parcels exist or no acceptable split is
 /// found; returns whether the target was reached.
