@@ -42,6 +42,10 @@ struct SpeculativeMoves::Proposal {
 SpeculativeMoves::SpeculativeMoves(RoadGraph& graph, std::size_t workers, double indexBucket)
     : graph_(graph) {
   index_ = std::make_unique<NodeIndex>(graph_, indexBucket);
+  // Each worker holds a copy of the graph, and the commits are serial: beyond a few workers the copies
+  // cost memory (about 80 MB each at 4096² cells) and buy nothing. The output does not depend on it.
+  constexpr std::size_t kMostWorkers = 4;
+  workers = std::min(workers, kMostWorkers);
   if (workers < 2) return;
   committed_.resize(graph_.nodes.size());
   for (std::size_t i = 0; i < graph_.nodes.size(); ++i) committed_[i] = graph_.nodes[i].p;

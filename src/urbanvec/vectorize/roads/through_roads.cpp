@@ -68,13 +68,19 @@ bool isChainEnd(const RoadGraph& graph, int i) {
 class LiveIndex {
  public:
   LiveIndex(const RoadGraph& graph, double bucket) : graph_(graph), bucket_(bucket) {
+    // Buckets over the nodes' bounding box, not from the origin: a window of a tiled run lies far from
+    // (0, 0) in the grid's frame.
     double maxX = 0.0, maxY = 0.0;
+    bool first = true;
     for (const RoadNode& node : graph.nodes) {
-      maxX = std::max(maxX, node.p.x);
-      maxY = std::max(maxY, node.p.y);
+      minX_ = first ? node.p.x : std::min(minX_, node.p.x);
+      minY_ = first ? node.p.y : std::min(minY_, node.p.y);
+      maxX = first ? node.p.x : std::max(maxX, node.p.x);
+      maxY = first ? node.p.y : std::max(maxY, node.p.y);
+      first = false;
     }
-    nx_ = static_cast<int>(maxX / bucket_) + 1;
-    ny_ = static_cast<int>(maxY / bucket_) + 1;
+    nx_ = static_cast<int>((maxX - minX_) / bucket_) + 1;
+    ny_ = static_cast<int>((maxY - minY_) / bucket_) + 1;
     buckets_.resize(static_cast<std::size_t>(nx_) * ny_);
     for (std::size_t i = 0; i < graph.nodes.size(); ++i) update(static_cast<int>(i));
   }
@@ -104,11 +110,16 @@ class LiveIndex {
  private:
   const RoadGraph& graph_;
   double bucket_;
+  double minX_ = 0.0, minY_ = 0.0;
   int nx_ = 1, ny_ = 1;
   std::vector<std::vector<int>> buckets_;
   std::vector<int> bucketOf_;
-  int clampX(double x) const { return std::clamp(static_cast<int>(std::floor(x / bucket_)), 0, nx_ - 1); }
-  int clampY(double y) const { return std::clamp(static_cast<int>(std::floor(y / bucket_)), 0, ny_ - 1); }
+  int clampX(double x) const {
+    return static_cast<int>(std::clamp(std::floor((x - minX_) / bucket_), 0.0, static_cast<double>(nx_ - 1)));
+  }
+  int clampY(double y) const {
+    return static_cast<int>(std::clamp(std::floor((y - minY_) / bucket_), 0.0, static_cast<double>(ny_ - 1)));
+  }
   int bucketAt(const Vec2& p) const { return clampY(p.y) * nx_ + clampX(p.x); }
 };
 
@@ -538,7 +549,9 @@ bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, con
       if (std::binary_search(innerStarts.begin(), innerStarts.end(),
                              std::make_pair(j, static_cast<int>(next))))
         continue;
-      if (inCluster(next)) return false;  // a long road between two of its junctions: left as it is
+      // A long road between two of its junctions (or back to one): left as it is, since both ends'
+      // arms would claim its nodes.
+      if (inCluster(next) || inCluster(followChain(graph, j, next).back())) return false;
       arms.push_back(buildArm(graph, j, next, options));
       attach.push_back(j);
       first.push_back(next);
@@ -798,10 +811,17 @@ bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, con
       for (int l : graph.nodes[k].links)
         longest = std::max(longest, distance(graph.nodes[k].p, graph.nodes[l].p));
     }
+  // Every link of the rebuilt nodes leads to a live node (a backstop: an arm's nodes removed by another
+  // arm would leave a dangling link).
+  bool dangling = false;
+  for (const std::vector<int>* nodes : {&touched, &added})
+    for (int k : *nodes)
+      if (graph.nodes[k].alive)
+        for (int l : graph.nodes[k].links) dangling = dangling || !graph.nodes[l].alive;
   Surroundings now = around;
   now.longestLink = longest;
   now.coverQuery = longest + options.coverRadius;
-  if (offCells || rejectMoves(graph, options, now, moved, covered, stats)) {
+  if (offCells || dangling || rejectMoves(graph, options, now, moved, covered, stats)) {
     for (std::size_t k = 0; k < touched.size(); ++k) graph.nodes[touched[k]] = saved[k];
     for (int k : added) {
       graph.nodes[k].links.clear();
