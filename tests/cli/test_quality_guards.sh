@@ -41,7 +41,10 @@
 #                                                        p95 0.994 / 0.748; stage rows B7, F, C-E copied)
 #                                                       (issue 20, a cluster rebuild's links cut to the longest link before:
 #                                                        monaco 1.001, bubenec 1.206, monaco blocks/parcels 217/1198;
-#                                                        stage rows B7, F, C-E copied: more approaches on the cut links)    (1.139 / 1.455 before B7, 1.045 / 1.394 before curves drawn as curves, straight roads between ends off their line and approaches straight only where their cells are, issue 20)
+#                                                        stage rows B7, F, C-E copied: more approaches on the cut links)
+#                                                       (issue 20, approaches hooked through another road's band drawn straight:
+#                                                        monaco 0.982 / 1.731 bends >= 20, p95 0.993 / 0.751, 56 of 72 matchable; bubenec
+#                                                        unchanged; monaco stage rows B7, F, C-E copied: 7 more nodes placed)    (1.139 / 1.455 before B7, 1.045 / 1.394 before curves drawn as curves, straight roads between ends off their line and approaches straight only where their cells are, issue 20)
 #   people in / kept            54197.8 / 54177.7 (20.0 ignored)   3236.36 / 3236.36
 #   misplaced people share          0.762      0.699
 set -e
@@ -72,9 +75,9 @@ monaco B3 9474 9946 461 0 17 146 0
 monaco B4 9429 9714 5 191 2 27
 monaco B5 9029 9314 0 340 1 60
 monaco B6 11732 12017 1143 2703 8
-monaco B7 11610 11888 132 21 42 553 82 60 0 240 163 22 26
-monaco F 11598 11876 0 1012 0 3 123 740 1
-monaco C-E 0 0 217 1198 1 1 17 38
+monaco B7 11609 11887 132 21 42 553 82 67 0 245 164 15 26
+monaco F 11555 11833 0 1012 0 2 118 720 1
+monaco C-E 0 0 218 1199 1 1 17 38
 bubenec A2 0 0 13 7
 bubenec A3 0 0
 bubenec A4 769 775 0 2 2 0 8 2

@@ -48,9 +48,39 @@ bool nearRoadCell(const Grid<std::uint8_t>& cells, const Vec2& p, double r) {
   return found;
 }
 
+/// True when every point between a and b (sampled every quarter cell, the ends left out) lies within r of
+/// a road cell.
+bool segmentOnCells(const Grid<std::uint8_t>& cells, const Vec2& a, const Vec2& b, double r) {
+  const int steps = static_cast<int>(std::ceil(distance(a, b) / 0.25));
+  for (int s = 1; s < steps; ++s)
+    if (!nearRoadCell(cells, a + (b - a) * (static_cast<double>(s) / steps), r)) return false;
+  return true;
+}
+
 /// How far a node of this type may lie from its placement and still be on its cells (pw).
 double placementReach(NodeType type, double reach) {
   return reach + (type == NodeType::Primary ? std::sqrt(0.5) : 0.0);
+}
+
+/// Whether an approach node may go to onLine, a point of the straight piece its approach is drawn on:
+/// within reach of its placement (pw, or the smoothing limit without cells) and of a road cell. A node
+/// of a chain (at most two links: a rebuilt cluster's arm is linked to its junction after its approach
+/// is drawn) may leave its placement's reach, up to twice it (a wide square's cells would otherwise let
+/// any piece through), when the whole piece runs on road cells (pieceOnCells): a
+/// stem whose skeleton hooks through another road's band then meets the crossing at its own angle, and
+/// the coverage check keeps every cell covered (issue 20).
+bool approachInReach(const RoadNode& n, const Vec2& onLine, bool pieceOnCells,
+                     const ThroughRoadOptions& options) {
+  if (!options.cells) return distance(onLine, n.placed) <= smoothingShiftLimit(n.type, options.reach);
+  const double shift = distance(onLine, n.placed), reach = placementReach(n.type, options.reach);
+  return (shift <= reach || (pieceOnCells && n.links.size() <= 2 && shift <= 2.0 * reach)) &&
+         nearRoadCell(*options.cells, onLine, options.reach);
+}
+
+/// True when the straight piece ab of an approach lies within reach of road cells all along
+/// (approachInReach), and the rule is on.
+bool pieceOnRoadCells(const Vec2& a, const Vec2& b, const ThroughRoadOptions& options) {
+  return options.cells && options.stemThroughBands && segmentOnCells(*options.cells, a, b, options.reach);
 }
 
 bool isRoad(const RoadNode& n) {
@@ -467,21 +497,25 @@ void placeIntersection(RoadGraph& graph, int at, const ThroughRoadOptions& optio
       onLine.clear();
       double along = 0.0;
       bool inReach = true;
+      const bool pieceOnCells = pieceOnRoadCells(target, graph.nodes[anchor].p, options);
       for (std::size_t m = 0; m < count && inReach; ++m) {
         const RoadNode& n = graph.nodes[arm.nodes[m]];
         along = std::clamp(dot(n.p - target, ab) / len2, along, 1.0);
         onLine.push_back(target + ab * along);
-        inReach = options.cells
-                      ? distance(onLine.back(), n.placed) <= placementReach(n.type, options.reach) &&
-                            nearRoadCell(*options.cells, onLine.back(), options.reach)
-                      : distance(onLine.back(), n.placed) <= smoothingShiftLimit(n.type, options.reach);
+        inReach = approachInReach(n, onLine.back(), pieceOnCells, options);
       }
       if (!inReach) continue;
       if (options.straightApproachesOnly) {
         // Only an approach whose cells are straight is drawn straight (the straight-road rule, from the
-        // crossing to the anchor): a road curving into a crossing keeps its curve.
+        // crossing to the anchor): a road curving into a crossing keeps its curve. The placements of
+        // nodes that leave their reach (a skeleton's hook through another road's band, approachInReach)
+        // are left out.
         cells.assign(1, node.placed);
-        for (std::size_t m = 0; m < count; ++m) cells.push_back(graph.nodes[arm.nodes[m]].placed);
+        for (std::size_t m = 0; m < count; ++m) {
+          const RoadNode& n = graph.nodes[arm.nodes[m]];
+          if (distance(onLine[m], n.placed) <= placementReach(n.type, options.reach))
+            cells.push_back(n.placed);
+        }
         cells.push_back(graph.nodes[anchor].placed);
         if (!straightBetween(graph, cells, at, anchor, target, graph.nodes[anchor].p, options, scratch))
           continue;
@@ -765,15 +799,12 @@ bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, con
         const bool straight =
             !options.straightApproachesOnly || straightChain(cells, x, graph.nodes[anchors[a]].p, options);
         double along = 0.0;
+        const bool pieceOnCells = pieceOnRoadCells(x, graph.nodes[anchors[a]].p, options);
         for (std::size_t j = k; j < arm.movable && straight; ++j) {
           RoadNode& node = graph.nodes[arm.nodes[j]];
           along = std::clamp(dot(node.p - x, ab) / len2, along, 1.0);
           const Vec2 onLine = x + ab * along;
-          const bool inReach =
-              options.cells ? distance(onLine, node.placed) <= placementReach(node.type, options.reach) &&
-                                  nearRoadCell(*options.cells, onLine, options.reach)
-                            : distance(onLine, node.placed) <= smoothingShiftLimit(node.type, options.reach);
-          if (!inReach) break;
+          if (!approachInReach(node, onLine, pieceOnCells, options)) break;
           node.p = onLine;
         }
         for (std::size_t j = k; j < arm.nodes.size(); ++j) moved.push_back(arm.nodes[j]);
@@ -796,10 +827,8 @@ bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, con
   // The links between the junctions run on road cells, and nothing crosses or is uncovered.
   bool offCells = false;
   for (const auto& [q, r] : between) {
-    const Vec2 a = points[q].p, b = points[r].p;
-    const int steps = static_cast<int>(std::ceil(distance(a, b) / 0.25));
-    for (int s = 1; s < steps && options.cells && !offCells; ++s)
-      offCells = !nearRoadCell(*options.cells, a + (b - a) * (static_cast<double>(s) / steps), options.reach);
+    if (options.cells && !offCells)
+      offCells = !segmentOnCells(*options.cells, points[q].p, points[r].p, options.reach);
   }
   // The checks look around where the nodes are now, as far as the longest link (the rebuilt ones
   // included).

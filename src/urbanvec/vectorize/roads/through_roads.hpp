@@ -74,6 +74,12 @@ struct ThroughRoadOptions {
   /// roads between ends off their line"): Monaco 54 instead of 52 of its 72 matchable blocks, distances
   /// closer on both samples.
   bool straightApproachesOnly = true;
+  /// An approach's chain nodes may leave their placements' reach (up to twice it) to go onto the
+  /// straight piece when the whole piece, crossing to anchor, lies within reach of road cells (a stem
+  /// whose skeleton hooks through another road's band meets the crossing at its own angle; their
+  /// placements are left out of the straightness check); false = every node stays within reach of its
+  /// placement (issue 20, docs/vectorize.md "Junction clusters").
+  bool stemThroughBands = true;
   /// Junction consolidation, before the rest of the stage. Junctions (road nodes of three or more
   /// links) joined by short chains form a cluster (no two of its junctions farther apart than two
   /// primaries' span, junctionSpan x 4); its arms (the roads leaving it) are fitted and paired as an

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "urbanvec/core/landuse.hpp"
 #include "urbanvec/vectorize/roads/through_roads.hpp"
 
 using namespace urbanvec;
@@ -220,6 +221,50 @@ TEST(ThroughRoads, TJunctionStemMeetsTheThroughRoadAtItsOwnAngleWithoutAHook) {
   EXPECT_NEAR(g.nodes[centre].p.y, 0.0, 1e-9);
   EXPECT_NEAR(g.nodes[centre].p.x, 0.0, 1e-9);
   EXPECT_LT(largestTurn(g, stemIds), 1.0);
+}
+
+TEST(ThroughRoads, ApproachWhoseSkeletonHooksThroughABulgeOfCellsIsDrawnStraight) {
+  // Cells (internal frame, 21 x 21): a street along y = 10.5 (row 10) crossed by one along x = 10.5
+  // (column 10), whose cells bulge east by one cell just south of the crossing (as where another road's
+  // band touches it). The skeleton hooks east there: the south arm's first node a lies 1.4 pw off its
+  // line, beyond its placement's reach (1 pw), but the straight piece from the crossing runs on road
+  // cells all along and every cell stays covered: the approach is drawn straight, a's placement left
+  // out of its straightness check (issue 20, the
+  // 45-degree grid's 94-degree hook); with the rule off it keeps its hook.
+  auto run = [](bool rule) {
+    Grid<std::uint8_t> cells(21, 21, static_cast<std::uint8_t>(LandUse::Residential));
+    const auto road = static_cast<std::uint8_t>(LandUse::SecondaryRoad);
+    for (int k = 0; k < 21; ++k) cells.at(k, 10) = cells.at(10, k) = road;
+    cells.at(11, 11) = road;
+    RoadGraph g;
+    const int centre = g.addNode({10.5, 10.5}, NodeType::Secondary);
+    std::vector<Vec2> east, west, north, south{{11.9, 9.6}};
+    for (int k = 1; k <= 10; ++k) {
+      east.push_back({10.5 + k, 10.5});
+      west.push_back({10.5 - k, 10.5});
+      north.push_back({10.5, 10.5 + k});
+      if (k >= 2) south.push_back({10.5, 10.5 - k});
+    }
+    path(g, east, centre);
+    path(g, west, centre);
+    path(g, north, centre);
+    std::vector<int> ids{centre};
+    for (int k : path(g, south, centre)) ids.push_back(k);
+    for (RoadNode& n : g.nodes) n.placed = n.p;
+    ThroughRoadOptions options;
+    options.cells = &cells;
+    options.stemThroughBands = rule;
+    straightenThroughRoads(g, options);
+    double off = 0;
+    for (int k : ids) off = std::max(off, std::fabs(g.nodes[k].p.x - 10.5));
+    return std::make_pair(largestTurn(g, ids), off);
+  };
+  const auto [hooked, hookedOff] = run(false);
+  EXPECT_GT(hooked, 40.0);
+  EXPECT_GT(hookedOff, 1.3);
+  const auto [turn, off] = run(true);
+  EXPECT_LT(turn, 20.0);  // the crossing moves a little towards the bulge; no hook
+  EXPECT_LT(off, 1.0);
 }
 
 namespace {
