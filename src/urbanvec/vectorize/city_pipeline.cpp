@@ -200,8 +200,8 @@ std::vector<MultiLineString> roadFacingEdges(const BlocksResult& blocks, const F
         if (!within) {
           if (!prepared) prepared = GEOSPrepare_r(h, block.get());
           if (!prepared) throw internalError("GEOS failed to prepare a block: " + c.lastError());
-          within = GEOSPreparedDistanceWithin_r(h, prepared, pavement[static_cast<size_t>(k)].get(),
-                                                10.0 * tolerance) == 1;
+          // Indexed on the block's segments: GEOSPreparedDistanceWithin compares every pair.
+          within = c.withinDistance(prepared, pavement[static_cast<size_t>(k)].get(), 10.0 * tolerance);
         }
         if (within) near[kept++] = k;
       }
