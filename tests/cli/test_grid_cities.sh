@@ -23,7 +23,9 @@
 # cluster's junction where two through roads meet is their crossing and takes a stem only within its
 # band or -smooth-reach of its line: 18, 74, 75, 93, 61 deg/km and 18, 62, 41, 54, 43; since an approach
 # whose skeleton hooks through another road's band goes straight where the straight piece runs on road
-# cells: 18, 68, 67, 65, 48 deg/km and 18, 55, 32, 38, 25) with ~15 % room;
+# cells: 18, 68, 67, 65, 48 deg/km and 18, 55, 32, 38, 25; since a cluster's rebuild that leaves a
+# road cell uncovered is retried with its junctions on one through road nudged to cover it: 18, 59, 67,
+# 65, 48 deg/km and 18, 46, 32, 38, 25) with ~15 % room;
 # the truth never turns, so turning is bounded in degrees per km, and B7 is checked against the same
 # run with -no-through-roads (today 18 vs 132 deg/km at 0 degrees, 321 vs 1189 summed over the five).
 set -e
@@ -33,8 +35,8 @@ jqv() { jq -r "$1" "$2"; }
 le() { awk -v v="$2" -v m="$3" 'BEGIN { exit !(v != "" && v != "null" && v + 0 <= m + 0) }' || fail "$1 = '$2', above $3"; echo "$1 = $2 (<= $3)"; }
 ge() { awk -v v="$2" -v m="$3" 'BEGIN { exit !(v != "" && v != "null" && v + 0 >= m + 0) }' || fail "$1 = '$2', below $3"; echo "$1 = $2 (>= $3)"; }
 
-declare -A turning_max=([0]=21 [15]=78 [30]=77 [45]=75 [60]=56)
-declare -A sharp_max=([0]=21 [15]=64 [30]=37 [45]=44 [60]=29)
+declare -A turning_max=([0]=21 [15]=67 [30]=77 [45]=75 [60]=56)
+declare -A sharp_max=([0]=21 [15]=53 [30]=37 [45]=44 [60]=29)
 on_sum=0
 off_sum=0
 for angle in 0 15 30 45 60; do

@@ -266,9 +266,10 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
     const ThroughRoadStats s = straightenThroughRoads(graph, through, p);
     if (!options.throughRoads.enabled) return std::string("skipped");
     return counts(s.clusters, " junction clusters, ", s.clustersConsolidated, " consolidated (",
-                  s.junctionsRemoved, " junctions fewer), ", s.intersections, " intersections, ", s.pairs,
-                  " through pairs, ", s.nodesPlaced, " nodes placed, ", s.outOfReach, " out of reach, ",
-                  s.approaches, " approaches, ", s.straightChains, " straight roads, ", s.crossingsAvoided,
+                  s.junctionsRemoved, " junctions fewer, ", s.clustersNudged, " nudged to cover), ",
+                  s.intersections, " intersections, ", s.pairs, " through pairs, ", s.nodesPlaced,
+                  " nodes placed, ", s.outOfReach, " out of reach, ", s.approaches, " approaches, ",
+                  s.straightChains, " straight roads, ", s.crossingsAvoided,
                   " moves left out for crossings, ", s.uncoveringAvoided, " for uncovered cells");
   });
   run("F", "road output", 0.05, false, [&](const Progress& p) {

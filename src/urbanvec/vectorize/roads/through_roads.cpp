@@ -194,9 +194,12 @@ std::vector<std::int64_t> cellsNearLinks(const RoadGraph& graph, const Grid<std:
   return out;
 }
 
-/// True when one of the cells is farther than `radius` from every link.
-bool anyUncovered(const RoadGraph& graph, const Grid<std::uint8_t>& cells, const Surroundings& around,
-                  const std::vector<std::int64_t>& candidates, double radius) {
+/// The centres of the candidate cells farther than `radius` from every link (at most `limit` of them,
+/// in the candidates' order).
+std::vector<Vec2> uncoveredCells(const RoadGraph& graph, const Grid<std::uint8_t>& cells,
+                                 const Surroundings& around, const std::vector<std::int64_t>& candidates,
+                                 double radius, std::size_t limit) {
+  std::vector<Vec2> out;
   for (std::int64_t k : candidates) {
     const Vec2 c = patchCentre(cells, static_cast<int>(k % cells.width), static_cast<int>(k / cells.width));
     bool covered = false;
@@ -210,9 +213,18 @@ bool anyUncovered(const RoadGraph& graph, const Grid<std::uint8_t>& cells, const
         }
       if (covered) break;
     }
-    if (!covered) return true;
+    if (!covered) {
+      out.push_back(c);
+      if (out.size() >= limit) break;
+    }
   }
-  return false;
+  return out;
+}
+
+/// True when one of the cells is farther than `radius` from every link.
+bool anyUncovered(const RoadGraph& graph, const Grid<std::uint8_t>& cells, const Surroundings& around,
+                  const std::vector<std::int64_t>& candidates, double radius) {
+  return !uncoveredCells(graph, cells, around, candidates, radius, 1).empty();
 }
 
 bool movedLinksCross(const RoadGraph& graph, const Surroundings& around, const std::vector<int>& moved);
@@ -557,6 +569,77 @@ struct ClusterPoint {
   std::vector<std::size_t> lines;
 };
 
+/// A node a cluster's rebuild placed that may be nudged toward an uncovered cell: where the rebuild
+/// put it, and the lines it must stay on with how far off each it may lie.
+struct Nudgeable {
+  int node = -1;
+  Vec2 rebuilt;
+  std::vector<std::pair<std::size_t, double>> lines;  ///< line, tolerance
+};
+
+/// Moves the nudgeable nodes toward the uncovered cells (`missing`), each cell in turn by the smallest
+/// move of one node that brings one of its links within coverRadius of it, the node staying within
+/// `reach` of where the rebuild put it, near a road cell, and within every one of its lines' band.
+/// Returns false (positions partly moved; the caller undoes the rebuild) when a cell cannot be covered.
+bool nudgeToCover(RoadGraph& graph, const std::vector<Nudgeable>& nodes,
+                  const std::vector<ClusterLine>& lines, const std::vector<Vec2>& missing,
+                  const ThroughRoadOptions& options) {
+  auto linkDistance = [&](int n, const Vec2& p, const Vec2& c) {
+    double best = std::numeric_limits<double>::max();
+    for (int q : graph.nodes[n].links)
+      if (graph.nodes[q].type != NodeType::Perimeter)
+        best = std::min(best, distanceToSegment(c, p, graph.nodes[q].p));
+    return best;
+  };
+  auto allowed = [&](const Nudgeable& n, const Vec2& p) {
+    if (distance(p, n.rebuilt) > options.reach + kPlacementRounding) return false;
+    for (const auto& [l, tolerance] : n.lines)
+      if (std::fabs(cross(lines[l].direction, p - lines[l].centre)) > tolerance + kPlacementRounding)
+        return false;
+    return !options.cells || nearRoadCell(*options.cells, p, options.reach);
+  };
+  for (const Vec2& c : missing) {
+    bool covered = false;
+    for (const Nudgeable& n : nodes)
+      covered = covered || linkDistance(n.node, graph.nodes[n.node].p, c) <= options.coverRadius;
+    if (covered) continue;  // an earlier nudge covered it
+    double bestMove = std::numeric_limits<double>::max();
+    const Nudgeable* pick = nullptr;
+    Vec2 bestAt;
+    for (const Nudgeable& n : nodes) {
+      const Vec2 from = graph.nodes[n.node].p;
+      const double toCell = distance(from, c);
+      if (toCell <= 0 || !allowed(n, from)) continue;
+      const Vec2 step = (c - from) * (1.0 / toCell);
+      auto at = [&](double t) { return from + step * t; };
+      // The farthest allowed move toward the cell (the allowed region is convex but for the cells).
+      double lo = 0.0, hi = std::min(toCell, 2.0 * options.reach);
+      if (!allowed(n, at(hi))) {
+        for (int i = 0; i < 30; ++i) {
+          const double mid = 0.5 * (lo + hi);
+          (allowed(n, at(mid)) ? lo : hi) = mid;
+        }
+        hi = lo;
+      }
+      if (!allowed(n, at(hi)) || linkDistance(n.node, at(hi), c) > options.coverRadius) continue;
+      // The smallest move that covers it.
+      lo = 0.0;
+      for (int i = 0; i < 30; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (linkDistance(n.node, at(mid), c) <= options.coverRadius ? hi : lo) = mid;
+      }
+      if (hi < bestMove) {
+        bestMove = hi;
+        pick = &n;
+        bestAt = at(hi);
+      }
+    }
+    if (!pick) return false;
+    graph.nodes[pick->node].p = bestAt;
+  }
+  return true;
+}
+
 /// One cluster of junctions (sorted ids) joined by short chains (ThroughRoadOptions::junctionSpan; the
 /// chains' inner nodes sorted in `inner`, their first links from either end sorted in `innerStarts`),
 /// replaced by the junctions its arms' fitted lines imply: the crossings of its through roads and
@@ -778,6 +861,7 @@ bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, con
   // past them) go.
   std::vector<int> moved = ids;
   std::vector<Vec2> cells;
+  auto lineTolerance = [&](std::size_t l) { return digitalLineBand(lines[l].direction) + options.slack; };
   for (std::size_t a = 0; a < arms.size(); ++a) {
     const int at = ids[armPoint[a]];
     const Arm& arm = arms[a];
@@ -850,7 +934,52 @@ bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, con
   Surroundings now = around;
   now.longestLink = longest;
   now.coverQuery = longest + options.coverRadius;
-  if (offCells || dangling || rejectMoves(graph, options, now, moved, covered, stats)) {
+  bool reject = offCells || dangling;
+  if (!reject && movedLinksCross(graph, now, moved)) {
+    ++stats.crossingsAvoided;
+    reject = true;
+  }
+  if (!reject && options.cells) {
+    const std::vector<Vec2> missing =
+        uncoveredCells(graph, *options.cells, now, covered, options.coverRadius, SIZE_MAX);
+    if (!missing.empty()) {
+      reject = true;
+      bool missingCounted = false;
+      // Retry once with the junctions on one through road nudged toward the uncovered cells (issue 20).
+      // Where two through roads cross, the junction stays at their crossing (moved, both roads bend at
+      // it), and approach nodes stay on their lines (moved sideways, they draw hooks).
+      std::vector<Nudgeable> nudgeable;
+      for (std::size_t q = 0; q < points.size(); ++q) {
+        std::size_t through = 0;
+        for (std::size_t l : points[q].lines) through += lines[l].through ? 1 : 0;
+        if (through >= 2) continue;
+        Nudgeable n{ids[q], points[q].p, {}};
+        for (std::size_t l : points[q].lines) n.lines.push_back({l, lineTolerance(l)});
+        nudgeable.push_back(n);
+      }
+      if (options.nudgeToCover && nudgeToCover(graph, nudgeable, lines, missing, options)) {
+        for (const Nudgeable& n : nudgeable) live.update(n.node);
+        for (const Nudgeable& n : nudgeable)
+          for (int l : graph.nodes[n.node].links)
+            longest = std::max(longest, distance(graph.nodes[n.node].p, graph.nodes[l].p));
+        now.longestLink = longest;
+        now.coverQuery = longest + options.coverRadius;
+        bool off = false;
+        for (const auto& [q, r] : between)
+          off = off ||
+                !segmentOnCells(*options.cells, graph.nodes[ids[q]].p, graph.nodes[ids[r]].p, options.reach);
+        const bool crossing = !off && movedLinksCross(graph, now, moved);
+        if (crossing) ++stats.crossingsAvoided;
+        if (!off && !crossing && !anyUncovered(graph, *options.cells, now, covered, options.coverRadius)) {
+          reject = false;
+          ++stats.clustersNudged;
+        }
+        if (crossing) missingCounted = true;
+      }
+      if (reject && !missingCounted) ++stats.uncoveringAvoided;
+    }
+  }
+  if (reject) {
     for (std::size_t k = 0; k < touched.size(); ++k) graph.nodes[touched[k]] = saved[k];
     for (int k : added) {
       graph.nodes[k].links.clear();
@@ -1032,6 +1161,7 @@ void addStats(ThroughRoadStats& to, const ThroughRoadStats& s) {
   to.straightChains += s.straightChains;
   to.crossingsAvoided += s.crossingsAvoided;
   to.uncoveringAvoided += s.uncoveringAvoided;
+  to.clustersNudged += s.clustersNudged;
 }
 
 }  // namespace

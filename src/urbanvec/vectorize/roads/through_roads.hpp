@@ -96,6 +96,14 @@ struct ThroughRoadOptions {
   /// shallowest crossing of two roads that are not one. 0 = off. Measured (docs/vectorize.md,
   /// "Junction clusters"): 2 and 2.37 within noise, 1.5 and 3 worse on the synthetic grids.
   double junctionSpan = 2.37;
+  /// When a cluster's rebuild would leave a few road cells just over `coverRadius` from every link,
+  /// retry once with the rebuilt junctions on one through road nudged toward those cells (a crossing
+  /// of two through roads stays at their crossing, approach nodes stay on their lines): each the
+  /// smallest move that covers a cell, within `reach` of where the rebuild put it and within each of
+  /// its lines' band (digitalLineBand + slack); the rebuild stays only when every cell is then covered
+  /// and nothing crosses. false = such a rebuild is undone. Measured: docs/vectorize.md, "Junction
+  /// clusters".
+  bool nudgeToCover = true;
   /// Worker threads (0 = all cores). Does not change the output: the moves are made speculatively on
   /// each thread's copy of the graph and committed in node order (SpeculativeMoves).
   int threads = 0;
@@ -113,6 +121,7 @@ struct ThroughRoadStats {
   std::size_t straightChains = 0;        ///< roads between intersections/dead ends drawn as a straight line
   std::size_t crossingsAvoided = 0;      ///< moves not made because a moved link would cross another
   std::size_t uncoveringAvoided = 0;     ///< moves not made because they would uncover a road cell
+  std::size_t clustersNudged = 0;        ///< cluster rebuilds kept by nudging nodes toward uncovered cells
 };
 
 /// Half-width of the band holding the cell placements of a road along direction `d` (unit), in pw:

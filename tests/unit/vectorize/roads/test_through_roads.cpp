@@ -492,3 +492,68 @@ TEST(JunctionClusters, AStemWithinReachOfTheThroughRoadsCrossingJoinsIt) {
   EXPECT_NEAR(distance(g.nodes[left[0]].p, {0, 0}), 0.0, 1e-6);
   EXPECT_EQ(g.nodes[left[0]].links.size(), 5u);
 }
+
+TEST(JunctionClusters, ARebuildLeavingACellUncoveredIsKeptWithTheStemJunctionNudgedToCoverIt) {
+  // Cells (internal frame, 25 x 21): a street along y = 10.5 crossed by one along x = 10.5 at O, a stem
+  // coming in from the north-east at 60 degrees onto the street at P = (12.5, 10.5), and a stub of two
+  // cells south of P, (12.5, 9.5) and (12.5, 8.5). The skeleton put P's junction half a cell south, at
+  // (12.5, 10.0), within 1.5 cells of the stub's end. The cluster O-P is rebuilt at the lines' crossings,
+  // which leaves the stub's end 2 cells from every link: the rebuild is undone unless P (a junction on
+  // one through road) is nudged south within the street's band (0.5 + slack) to cover it.
+  Grid<std::uint8_t> cells(25, 21, static_cast<std::uint8_t>(LandUse::Residential));
+  const auto roadCode = static_cast<std::uint8_t>(LandUse::SecondaryRoad);
+  const Vec2 p(12.5, 10.5), d = unitAt(60);
+  for (int k = 0; k < 25; ++k) cells.at(k, 10) = roadCode;
+  for (int k = 0; k < 21; ++k) cells.at(10, k) = roadCode;
+  cells.at(12, 11) = cells.at(12, 12) = roadCode;
+  for (int r = 0; r < 21; ++r)
+    for (int c = 0; c < 25; ++c) {
+      const Vec2 centre(c + 0.5, 21 - r - 0.5);
+      if (dot(centre - p, d) > 0 && std::fabs(cross(d, centre - p)) <= 0.75) cells.at(c, r) = roadCode;
+    }
+  auto run = [&](bool nudge) {
+    RoadGraph g;
+    const int o = g.addNode({10.5, 10.5}, NodeType::Secondary),
+              q = g.addNode({12.5, 10.0}, NodeType::Secondary);
+    path(g, {{11.5, 10.3}}, o);
+    g.link(static_cast<int>(g.nodes.size()) - 1, q);
+    std::vector<Vec2> west, north, south, east, stem;
+    for (int k = 1; k <= 9; ++k) {
+      west.push_back({10.5 - k, 10.5});
+      north.push_back({10.5, 10.5 + k});
+      south.push_back({10.5, 10.5 - k});
+      east.push_back({12.5 + k, 10.5});
+      stem.push_back(p + d * static_cast<double>(k));
+    }
+    for (const auto& [from, points] :
+         {std::pair<int, std::vector<Vec2>>{o, west}, {o, north}, {o, south}, {q, east}, {q, stem}})
+      path(g, points, from);
+    for (RoadNode& n : g.nodes) n.placed = n.p;
+    g.sortLinksClockwise();
+    ThroughRoadOptions options;
+    options.cells = &cells;
+    options.slack = 0.1;
+    options.nudgeToCover = nudge;
+    const ThroughRoadStats s = straightenThroughRoads(g, options);
+    // Every road cell near the cluster stays within the coverage radius of a link.
+    double farthest = 0;
+    for (int r = 0; r < 21; ++r)
+      for (int c = 0; c < 25; ++c) {
+        const Vec2 centre(c + 0.5, 21 - r - 0.5);
+        if (cells.at(c, r) != roadCode || distance(centre, p) > 6) continue;  // the roads' ends aside
+        double best = 1e9;
+        for (std::size_t k = 0; k < g.nodes.size(); ++k)
+          if (g.nodes[k].alive)
+            for (int l : g.nodes[k].links)
+              best = std::min(best, distanceToSegment(centre, g.nodes[k].p, g.nodes[l].p));
+        farthest = std::max(farthest, best);
+      }
+    EXPECT_LE(farthest, options.coverRadius + 1e-9);
+    return s;
+  };
+  const ThroughRoadStats off = run(false);
+  EXPECT_EQ(off.clustersConsolidated, 0u);
+  const ThroughRoadStats on = run(true);
+  EXPECT_EQ(on.clustersNudged, 1u);
+  EXPECT_EQ(on.clustersConsolidated, 1u);
+}
