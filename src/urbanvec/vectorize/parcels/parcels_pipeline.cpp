@@ -4,15 +4,10 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
-#include <chrono>
-#include <condition_variable>
-#include <exception>
-#include <limits>
-#include <mutex>
-#include <thread>
+#include <memory>
 
 #include "urbanvec/core/error.hpp"
+#include "urbanvec/core/parallel.hpp"
 #include "urbanvec/core/random.hpp"
 #include "urbanvec/vectorize/parcels/population.hpp"
 
@@ -217,67 +212,22 @@ ParcelsResult vectorizeParcels(const std::vector<ParcelBlock>& blocks, const Par
   validateParcelsOptions(options);
   ParcelsResult result;
   result.blocks.resize(blocks.size());
-  reportProgress(progress, 0.0, "parcels");
   const size_t n = blocks.size();
+  ProgressTicker ticker(progress, "parcels", n);
   if (n == 0) {
-    reportProgress(progress, 1.0, "parcels");
+    ticker.finish();
     return result;
   }
-  size_t threads = options.threads > 0 ? static_cast<size_t>(options.threads)
-                                       : std::max<size_t>(1, std::thread::hardware_concurrency());
-  threads = std::min(threads, n);
-
-  std::atomic<size_t> next{0};
-  std::atomic<bool> stop{false};
-  std::mutex mutex;
-  std::condition_variable wake;
-  size_t done = 0;
-  std::exception_ptr failure;
-  size_t failureIndex = std::numeric_limits<size_t>::max();
-
-  auto worker = [&]() {
-    geos::Context geos;  // one GEOS context per worker thread
-    while (!stop) {
-      const size_t i = next++;
-      if (i >= n) break;
-      try {
-        result.blocks[i] = parcelBlock(blocks[i], options, geos);
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(mutex);
-        if (i < failureIndex) {  // the lowest failing block, whatever the scheduling
-          failureIndex = i;
-          failure = std::current_exception();
-        }
-        stop = true;
-      }
-      std::lock_guard<std::mutex> lock(mutex);
-      ++done;
-      wake.notify_one();
-    }
-  };
-  std::vector<std::thread> pool;
-  for (size_t t = 0; t < threads; ++t) pool.emplace_back(worker);
-
-  std::exception_ptr cancelled;
-  {
-    std::unique_lock<std::mutex> lock(mutex);
-    while (done < n && !stop) {
-      wake.wait_for(lock, std::chrono::milliseconds(100));
-      const double fraction = static_cast<double>(done) / static_cast<double>(n);
-      lock.unlock();
-      try {
-        reportProgress(progress, fraction, "parcels");
-      } catch (...) {
-        cancelled = std::current_exception();
-        stop = true;
-      }
-      lock.lock();
-    }
-  }
-  for (std::thread& t : pool) t.join();
-  if (cancelled) std::rethrow_exception(cancelled);
-  if (failure) std::rethrow_exception(failure);
-  reportProgress(progress, 1.0, "parcels");
+  // One GEOS context per worker; each block writes only its own slot, so the thread count does not
+  // change the result.
+  const size_t workers = std::min(workerCount(options.threads), n);
+  std::vector<std::unique_ptr<geos::Context>> contexts;
+  for (size_t w = 0; w < workers; ++w) contexts.push_back(std::make_unique<geos::Context>());
+  runParallel(
+      workers, n,
+      [&](size_t i, size_t worker) { result.blocks[i] = parcelBlock(blocks[i], options, *contexts[worker]); },
+      [&](size_t done) { ticker.tick(done); });
+  ticker.finish();
   return result;
 }
 
