@@ -555,12 +555,16 @@ double roadWidth(NodeType type) {
   return type == NodeType::Primary ? 2.0 : 1.0;
 }
 
+/// Lines meeting at less than asin(0.2) = 11.5 degrees do not cross within a cluster's reach.
+constexpr double kShallowestMeet = 0.2;
+
 /// A line of a junction cluster: the fitted line of a pair of arms that continue each other (a
 /// through road), or of a single fitted arm (a stem).
 struct ClusterLine {
   Vec2 centre, direction;
   bool through = true;
-  bool dropped = false;  ///< a stem that meets no through road near the cluster
+  bool dropped = false;                 ///< a stem that meets no through road near the cluster
+  NodeType type = NodeType::Secondary;  ///< a stem's road (how far its line may lie from its cells)
 };
 
 /// A junction the cluster's lines imply: where two through roads cross, or a stem meets a through road.
@@ -645,6 +649,28 @@ bool nudgeToCover(RoadGraph& graph, const std::vector<Nudgeable>& nodes,
 /// replaced by the junctions its arms' fitted lines imply: the crossings of its through roads and
 /// where its stems meet them, each within `clusterReach` of a junction of the cluster. Returns true
 /// when the cluster was rebuilt.
+/// Whether stem s's line goes on from where it meets one through road (a) to where it meets the next
+/// (b): every point between them (sampled every quarter cell) lies on its road's cells (within
+/// -smooth-reach of a road cell's centre, a primary's 0.71 pw more, as a node may lie), and a road cell
+/// that near the stretch lies farther than coverRadius from every other line of the cluster (a cell only
+/// the stem explains).
+bool stemGoesOn(const Grid<std::uint8_t>& cells, const std::vector<ClusterLine>& lines, std::size_t s,
+                const Vec2& a, const Vec2& b, const ThroughRoadOptions& options) {
+  const double onCells = placementReach(lines[s].type, options.reach) + kPlacementRounding;
+  if (!segmentOnCells(cells, a, b, onCells)) return false;
+  bool own = false;
+  forEachCellNearSegment(cells, a, b, onCells, [&](int col, int row, double) {
+    if (own || !isRoadCode(cells.at(col, row))) return;
+    const Vec2 c = patchCentre(cells, col, row);
+    bool explained = false;
+    for (std::size_t l = 0; l < lines.size() && !explained; ++l)
+      explained = l != s && !lines[l].dropped &&
+                  std::fabs(cross(lines[l].direction, c - lines[l].centre)) <= options.coverRadius;
+    own = !explained;
+  });
+  return own;
+}
+
 bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, const std::vector<int>& inner,
                         const std::vector<std::pair<int, int>>& innerStarts, double clusterReach,
                         const ThroughRoadOptions& options, const Surroundings& around, double& longestRebuilt,
@@ -686,7 +712,7 @@ bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, con
   for (std::size_t a = 0; a < arms.size(); ++a)
     if (!paired[a] && arms[a].fitted) {
       lineOf[a] = lines.size();
-      lines.push_back({arms[a].centre, arms[a].direction, false});
+      lines.push_back({arms[a].centre, arms[a].direction, false, false, graph.nodes[first[a]].type});
     }
   // Where the lines meet near the cluster: through roads crossing each other, and each stem where it
   // first meets a through road coming in from its own cells.
@@ -705,28 +731,63 @@ bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, con
           nearCluster(x))
         points.push_back({x, {i, k}});
     }
+  std::vector<double> stemEnd(lines.size(), 0.0);  // per stem: how far back along it its last junction lies
   for (std::size_t s = 0; s < lines.size(); ++s) {
     if (lines[s].through) continue;
-    double best = std::numeric_limits<double>::max();
-    ClusterPoint meet;
+    // The through roads the stem's line meets, nearest its own cells first (those meeting it at a shallow
+    // angle too: beyond the first meet they only extend the stem, and nearCluster bounds how far).
+    std::vector<std::pair<double, ClusterPoint>> meets;
+    double firstT = std::numeric_limits<double>::max();  // the nearest meet leastSquaresCrossing finds
     for (std::size_t i = 0; i < lines.size(); ++i) {
+      if (!lines[i].through) continue;
       Vec2 x;
-      if (!lines[i].through ||
-          !leastSquaresCrossing(
-              {{lines[s].centre, lines[s].direction}, {lines[i].centre, lines[i].direction}}, x))
-        continue;
-      const double t = dot(lines[s].centre - x, lines[s].direction);  // from the crossing out along the stem
-      if (t > 0 && t < best) {
-        best = t;
-        meet = {x, {s, i}};
+      const bool crossing = leastSquaresCrossing(
+          {{lines[s].centre, lines[s].direction}, {lines[i].centre, lines[i].direction}}, x);
+      const double sine = cross(lines[s].direction, lines[i].direction);
+      if (!crossing) {
+        if (std::fabs(sine) < kShallowestMeet) continue;
+        x = lines[s].centre +
+            lines[s].direction * (cross(lines[i].centre - lines[s].centre, lines[i].direction) / sine);
       }
+      const double t = dot(lines[s].centre - x, lines[s].direction);  // from the crossing out along the stem
+      if (t <= 0) continue;
+      meets.push_back({t, {x, {s, i}}});
+      if (crossing) firstT = std::min(firstT, t);
     }
-    if (best == std::numeric_limits<double>::max() || !nearCluster(meet.p)) {
+    std::stable_sort(meets.begin(), meets.end(),
+                     [](const auto& x, const auto& y) { return x.first < y.first; });
+    // The stem ends at the first through road it crosses steeply enough for leastSquaresCrossing.
+    while (!meets.empty() && meets.front().first < firstT) meets.erase(meets.begin());
+    if (meets.empty() || !nearCluster(meets[0].second.p)) {
       lines[s].dropped = true;  // meets no through road here: its arm is attached as one without a line
       continue;
     }
-    points.push_back(meet);
+    // A stem goes on through the through road it meets to the next one while its cells do
+    // (stemsThrough): the stretch between the two lies on road cells, and a road cell along it no other
+    // line of the cluster explains (farther than coverRadius from each). Its other side's cells ran into
+    // another road's band, so the cluster showed it as a stem; ended at the first, it would leave those
+    // cells uncovered.
+    std::size_t last = 0;
+    while (options.stemsThrough && options.cells && last + 1 < meets.size() &&
+           nearCluster(meets[last + 1].second.p) &&
+           stemGoesOn(*options.cells, lines, s, meets[last].second.p, meets[last + 1].second.p, options))
+      ++last;
+    for (std::size_t k = 0; k <= last; ++k) points.push_back(meets[k].second);
+    stemEnd[s] = meets[last].first;
   }
+  // Two stems that cross each other on their way to the through roads they meet cross there too.
+  for (std::size_t s = 0; s < lines.size() && options.stemsCross; ++s)
+    for (std::size_t r = s + 1; r < lines.size(); ++r) {
+      if (lines[s].through || lines[r].through || lines[s].dropped || lines[r].dropped) continue;
+      Vec2 x;
+      if (!leastSquaresCrossing(
+              {{lines[s].centre, lines[s].direction}, {lines[r].centre, lines[r].direction}}, x))
+        continue;
+      const double ts = dot(lines[s].centre - x, lines[s].direction),
+                   tr = dot(lines[r].centre - x, lines[r].direction);
+      if (ts > 0 && ts < stemEnd[s] && tr > 0 && tr < stemEnd[r] && nearCluster(x))
+        points.push_back({x, {s, r}});
+    }
   // Two crossings are one junction, at the least-squares crossing of all their lines, when that point
   // lies within every one of those lines' band (the straightness rule): no road bends at it. Where two
   // or more through roads meet, the junction is their crossing (where B7's placement puts it too), and a
@@ -780,6 +841,7 @@ bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, con
   // The new links: consecutive junctions along each through road, and each arm to the junction of its
   // line at its own side (the nearest junction for an arm without a line).
   std::vector<std::pair<std::size_t, std::size_t>> between;
+  std::vector<double> betweenReach;  // per link: how far from road cells it may run (pw)
   std::vector<std::size_t> armPoint(arms.size(), SIZE_MAX);
   for (std::size_t l = 0; l < lines.size(); ++l) {
     std::vector<std::pair<double, std::size_t>> along;
@@ -787,7 +849,12 @@ bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, con
       if (std::find(points[q].lines.begin(), points[q].lines.end(), l) != points[q].lines.end())
         along.push_back({dot(points[q].p - lines[l].centre, lines[l].direction), q});
     std::sort(along.begin(), along.end());
-    for (std::size_t k = 1; k < along.size(); ++k) between.push_back({along[k - 1].second, along[k].second});
+    for (std::size_t k = 1; k < along.size(); ++k) {
+      between.push_back({along[k - 1].second, along[k].second});
+      // A stem going on through a through road (stemsThrough) lies on its own road's cells, a primary's
+      // band 0.71 pw wider, as stemGoesOn tested.
+      betweenReach.push_back(lines[l].through ? options.reach : placementReach(lines[l].type, options.reach));
+    }
     for (std::size_t a = 0; a < arms.size(); ++a)
       if (lineOf[a] == l)
         armPoint[a] =
@@ -910,10 +977,10 @@ bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, con
   }
   // The links between the junctions run on road cells, and nothing crosses or is uncovered.
   bool offCells = false;
-  for (const auto& [q, r] : between) {
+  for (std::size_t b = 0; b < between.size(); ++b)
     if (options.cells && !offCells)
-      offCells = !segmentOnCells(*options.cells, points[q].p, points[r].p, options.reach);
-  }
+      offCells = !segmentOnCells(*options.cells, points[between[b].first].p, points[between[b].second].p,
+                                 betweenReach[b] + kPlacementRounding);
   // The checks look around where the nodes are now, as far as the longest link (the rebuilt ones
   // included).
   LiveIndex& live = *around.live;
@@ -965,9 +1032,10 @@ bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, con
         now.longestLink = longest;
         now.coverQuery = longest + options.coverRadius;
         bool off = false;
-        for (const auto& [q, r] : between)
+        for (std::size_t b = 0; b < between.size(); ++b)
           off = off ||
-                !segmentOnCells(*options.cells, graph.nodes[ids[q]].p, graph.nodes[ids[r]].p, options.reach);
+                !segmentOnCells(*options.cells, graph.nodes[ids[between[b].first]].p,
+                                graph.nodes[ids[between[b].second]].p, betweenReach[b] + kPlacementRounding);
         const bool crossing = !off && movedLinksCross(graph, now, moved);
         if (crossing) ++stats.crossingsAvoided;
         if (!off && !crossing && !anyUncovered(graph, *options.cells, now, covered, options.coverRadius)) {

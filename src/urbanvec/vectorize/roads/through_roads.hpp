@@ -104,6 +104,16 @@ struct ThroughRoadOptions {
   /// and nothing crosses. false = such a rebuild is undone. Measured: docs/vectorize.md, "Junction
   /// clusters".
   bool nudgeToCover = true;
+  /// A cluster's stem (an unpaired straight arm) goes on through the first through road it meets to the
+  /// next one, each crossing a junction, while its line between the two runs on road cells and part of
+  /// that stretch lies farther than `coverRadius` from every other line of the cluster (cells only the
+  /// stem explains: its other side ran into another road's band); false = a stem ends at the first
+  /// through road it meets. Needs `cells`. Measured: docs/vectorize.md, "Junction clusters".
+  bool stemsThrough = true;
+  /// Two stems of a cluster whose lines cross before each reaches the through road it meets cross
+  /// there (a junction of the two); false = they are left to cross on their links (and the rebuild is
+  /// undone).
+  bool stemsCross = true;
   /// Worker threads (0 = all cores). Does not change the output: the moves are made speculatively on
   /// each thread's copy of the graph and committed in node order (SpeculativeMoves).
   int threads = 0;

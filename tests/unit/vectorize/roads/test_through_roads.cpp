@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -277,6 +278,13 @@ std::vector<int> junctions(const RoadGraph& g) {
   return out;
 }
 
+/// Runs the stage on a graph built by hand, each node placed where it lies (its cell).
+ThroughRoadStats runPlaced(RoadGraph& g, const ThroughRoadOptions& options) {
+  for (RoadNode& n : g.nodes) n.placed = n.p;
+  g.sortLinksClockwise();
+  return straightenThroughRoads(g, options);
+}
+
 /// The nodes of the road from `from` through `next` and on through nodes of two links.
 std::vector<int> road(const RoadGraph& g, int from, int next) {
   std::vector<int> ids{from};
@@ -528,13 +536,11 @@ TEST(JunctionClusters, ARebuildLeavingACellUncoveredIsKeptWithTheStemJunctionNud
     for (const auto& [from, points] :
          {std::pair<int, std::vector<Vec2>>{o, west}, {o, north}, {o, south}, {q, east}, {q, stem}})
       path(g, points, from);
-    for (RoadNode& n : g.nodes) n.placed = n.p;
-    g.sortLinksClockwise();
     ThroughRoadOptions options;
     options.cells = &cells;
     options.slack = 0.1;
     options.nudgeToCover = nudge;
-    const ThroughRoadStats s = straightenThroughRoads(g, options);
+    const ThroughRoadStats s = runPlaced(g, options);
     // Every road cell near the cluster stays within the coverage radius of a link.
     double farthest = 0;
     for (int r = 0; r < 21; ++r)
@@ -556,4 +562,126 @@ TEST(JunctionClusters, ARebuildLeavingACellUncoveredIsKeptWithTheStemJunctionNud
   const ThroughRoadStats on = run(true);
   EXPECT_EQ(on.clustersNudged, 1u);
   EXPECT_EQ(on.clustersConsolidated, 1u);
+}
+
+TEST(JunctionClusters, AStemWhoseCellsGoOnThroughAThroughRoadCrossesItToTheNext) {
+  // Cells (internal frame, 31 x 26): street A along y = 10.5, street B along x = 20.5, and street C at 27
+  // degrees from the north-east, crossing B at (20.5, 14.07) and ending on A at X = (13.5, 10.5). The
+  // skeleton has junctions on A at X (J1), at A x B (J3) and on B where C joins it (J2, (20.5, 14.5));
+  // with a span of 5 (these streets' widths summed, 2, times 5: chains up to 10 pw are short) the three
+  // form one cluster, and C's arm beyond B is its only fitted arm: a stem. Ended at B, C's cells between
+  // B and A (2-3.5 cells from A and B) would be left uncovered and the rebuild undone; going on through
+  // B to A, the cluster is rebuilt with a junction at each crossing of the lines.
+  const int width = 31, height = 26;
+  Grid<std::uint8_t> cells(width, height, static_cast<std::uint8_t>(LandUse::Residential));
+  const auto roadCode = static_cast<std::uint8_t>(LandUse::SecondaryRoad);
+  const Vec2 x(13.5, 10.5), d = unitAt(27);
+  auto cellAt = [&](double cx, double cy) -> std::uint8_t& {
+    return cells.at(static_cast<int>(cx), height - 1 - static_cast<int>(cy));
+  };
+  for (int k = 0; k < width; ++k) cellAt(k + 0.5, 10.5) = roadCode;
+  for (int k = 0; k < height; ++k) cellAt(20.5, k + 0.5) = roadCode;
+  for (int r = 0; r < height; ++r)
+    for (int c = 0; c < width; ++c) {
+      const Vec2 centre(c + 0.5, height - r - 0.5);
+      if (dot(centre - x, d) > 0 && std::fabs(cross(d, centre - x)) <= digitalLineBand(d))
+        cells.at(c, r) = roadCode;
+    }
+  auto onC = [&](double cx) { return Vec2(cx, std::floor(x.y + (cx - x.x) * d.y / d.x) + 0.5); };
+  auto run = [&](bool rule) {
+    RoadGraph g;
+    const int j1 = g.addNode(x, NodeType::Secondary), j3 = g.addNode({20.5, 10.5}, NodeType::Secondary),
+              j2 = g.addNode(onC(20.5), NodeType::Secondary);
+    std::vector<Vec2> west, aInner, east, south, bInner, north, cInner, cOut;
+    for (double c = 0.5; c < x.x; c += 1) west.insert(west.begin(), Vec2(c, 10.5));
+    for (double c = 14.5; c < 20.5; c += 1) aInner.push_back({c, 10.5});
+    for (double c = 21.5; c < width; c += 1) east.push_back({c, 10.5});
+    for (double r = 9.5; r > 0; r -= 1) south.push_back({20.5, r});
+    for (double r = 11.5; r < onC(20.5).y; r += 1) bInner.push_back({20.5, r});
+    for (double r = onC(20.5).y + 1; r < height; r += 1) north.push_back({20.5, r});
+    for (double c = 14.5; c < 20.5; c += 1) cInner.push_back(onC(c));
+    for (double c = 21.5; c < width && onC(c).y < height; c += 1) cOut.push_back(onC(c));
+    path(g, west, j1);
+    path(g, aInner, j1);
+    g.link(static_cast<int>(g.nodes.size()) - 1, j3);
+    path(g, east, j3);
+    path(g, south, j3);
+    path(g, bInner, j3);
+    g.link(static_cast<int>(g.nodes.size()) - 1, j2);
+    path(g, north, j2);
+    path(g, cInner, j1);
+    g.link(static_cast<int>(g.nodes.size()) - 1, j2);
+    path(g, cOut, j2);
+    ThroughRoadOptions options;
+    options.cells = &cells;
+    options.junctionSpan = 5;
+    options.stemsThrough = rule;
+    const ThroughRoadStats s = runPlaced(g, options);
+    return std::make_pair(s, g);
+  };
+  const auto [off, offGraph] = run(false);
+  EXPECT_EQ(off.clusters, 1u);
+  EXPECT_EQ(off.clustersConsolidated, 0u);
+  const auto [on, g] = run(true);
+  EXPECT_EQ(on.clusters, 1u);
+  EXPECT_EQ(on.clustersConsolidated, 1u);
+  // A junction at each crossing of the lines: C x A, C x B, A x B.
+  const Vec2 cb(20.5, x.y + (20.5 - x.x) * d.y / d.x);
+  for (const Vec2& want : {x, cb, Vec2(20.5, 10.5)}) {
+    double nearest = 1e9;
+    for (int k : junctions(g)) nearest = std::min(nearest, distance(g.nodes[k].p, want));
+    EXPECT_LT(nearest, 0.35) << want.x << "," << want.y;
+  }
+}
+
+TEST(JunctionClusters, TwoStemsCrossingOnTheirWayToTheThroughRoadCrossEachOther) {
+  // A street along y = 0 and two streets from the north that cross each other at X = (0, 2) and end on
+  // it: P from the north-east at 60 degrees (meeting the street at (-1.15, 0)) and Q from the
+  // north-west at 120 degrees (meeting it at (1.15, 0)). Their cells merged, and the skeleton joined
+  // each to the nearer junction on the street: Q's arm to the western one, P's to the eastern one, two
+  // junctions 2.3 pw apart. Rebuilt, both stems run straight to where they meet the street, so their
+  // links cross each other: the rebuild is undone unless the stems cross at X too.
+  const Vec2 p = unitAt(60), q = unitAt(120), xing(0, 2);
+  const Vec2 pEnd = xing - p * (2 / p.y), qEnd = xing - q * (2 / q.y);
+  auto run = [&](bool rule) {
+    RoadGraph g;
+    const int west = g.addNode(pEnd, NodeType::Secondary), east = g.addNode(qEnd, NodeType::Secondary);
+    g.link(west, east);
+    std::vector<Vec2> streetWest, streetEast, pArm, qArm;
+    for (int k = 1; k <= 9; ++k) {
+      streetWest.push_back(pEnd - Vec2(k, 0));
+      streetEast.push_back(qEnd + Vec2(k, 0));
+      pArm.push_back(xing + p * (1.0 + k));
+      qArm.push_back(xing + q * (1.0 + k));
+    }
+    path(g, streetWest, west);
+    path(g, streetEast, east);
+    const std::vector<int> pIds = path(g, pArm, east), qIds = path(g, qArm, west);
+    ThroughRoadOptions options;
+    options.stemsCross = rule;
+    const ThroughRoadStats s = runPlaced(g, options);
+    return std::make_tuple(s, g, pIds.back(), qIds.back());
+  };
+  const auto [off, offGraph, offP, offQ] = run(false);
+  EXPECT_EQ(off.clusters, 1u);
+  EXPECT_EQ(off.clustersConsolidated, 0u);
+  const auto [on, g, farP, farQ] = run(true);
+  EXPECT_EQ(on.clustersConsolidated, 1u);
+  const std::vector<int> left = junctions(g);
+  ASSERT_EQ(left.size(), 3u);
+  int atX = -1;
+  for (int k : left)
+    if (distance(g.nodes[k].p, xing) < 1e-6) atX = k;
+  ASSERT_GE(atX, 0);
+  // Each stem runs straight from its far end through X to the street.
+  for (const auto& [far, dir] : {std::pair<int, Vec2>{farP, p}, {farQ, q}}) {
+    bool found = false;
+    for (int n : g.nodes[atX].links) {
+      const std::vector<int> r = road(g, atX, n);
+      if (r.back() != far) continue;
+      found = true;
+      for (int k : r) EXPECT_NEAR(cross(dir, g.nodes[k].p - xing), 0.0, 1e-6);
+    }
+    EXPECT_TRUE(found);
+  }
 }
