@@ -412,13 +412,46 @@ bool leastSquaresCrossing(const std::vector<std::pair<Vec2, Vec2>>& lines, Vec2&
   return true;
 }
 
+/// Whether some straight line holds every placement within its band (digitalLineBand + slack; the
+/// placements' strip strictly narrower than the band, so that a line exactly between two rows, on whose
+/// band edges both rows lie, does not count) and the ends a and b within endOffset of that band of it: the
+/// digital straight line test itself, where the total least-squares fit can leave a placement at a
+/// staircase's step just outside the band of the fitted line although a line holding them all exists. Every
+/// such line passes within the band of the first and last placements, so its direction is within asin(2 x
+/// 0.71 / L) of the chord between them (L its length); the directions are tried a hundredth of a pw apart at
+/// that length.
+bool onADigitalLine(const std::vector<Vec2>& placements, const Vec2& a, const Vec2& b,
+                    const ThroughRoadOptions& options) {
+  const Vec2 chord = placements.back() - placements.front();
+  const double span = length(chord);
+  if (span <= 2.0 * (std::sqrt(0.5) + options.slack)) return false;  // no direction to speak of
+  const double base = std::atan2(chord.y, chord.x);
+  const double range = std::asin(std::min(1.0, 2.0 * (std::sqrt(0.5) + options.slack) / span));
+  const double step = 0.01 / span;
+  for (double turn = -range; turn <= range; turn += step) {
+    const Vec2 d(std::cos(base + turn), std::sin(base + turn));
+    double lo = std::numeric_limits<double>::max(), hi = -lo;
+    for (const Vec2& p : placements) {
+      const double off = cross(d, p - placements.front());
+      lo = std::min(lo, off);
+      hi = std::max(hi, off);
+    }
+    if (hi - lo >= 2.0 * (digitalLineBand(d) + options.slack) - kPlacementRounding) continue;
+    const double mid = 0.5 * (lo + hi), ends = options.endOffset * digitalLineBand(d) + options.slack;
+    if (std::fabs(cross(d, a - placements.front()) - mid) <= ends &&
+        std::fabs(cross(d, b - placements.front()) - mid) <= ends)
+      return true;
+  }
+  return false;
+}
+
 /// straightChain on the placements of a road between the nodes e0 and e1 (drawn from a to b), or on
 /// those farther than innerRadius from the placement of an end that is an intersection: a crossing's
 /// cells bulge around its node, as the arms' fits leave them out. `scratch` is working space.
 bool straightBetween(const RoadGraph& graph, const std::vector<Vec2>& placements, int e0, int e1,
                      const Vec2& a, const Vec2& b, const ThroughRoadOptions& options,
-                     std::vector<Vec2>& scratch) {
-  if (straightChain(placements, a, b, options)) return true;
+                     std::vector<Vec2>& scratch, bool anyLine = false) {
+  if (straightChain(placements, a, b, options, anyLine)) return true;
   scratch.clear();
   for (const Vec2& p : placements) {
     bool crossing = false;
@@ -427,7 +460,8 @@ bool straightBetween(const RoadGraph& graph, const std::vector<Vec2>& placements
                               distance(p, graph.nodes[e].placed) <= options.innerRadius + kPlacementRounding);
     if (!crossing) scratch.push_back(p);
   }
-  return scratch.size() >= 2 && scratch.size() < placements.size() && straightChain(scratch, a, b, options);
+  return scratch.size() >= 2 && scratch.size() < placements.size() &&
+         straightChain(scratch, a, b, options, anyLine);
 }
 
 void placeIntersection(RoadGraph& graph, int at, const ThroughRoadOptions& options,
@@ -1198,7 +1232,9 @@ void straightenChainsFrom(RoadGraph& graph, std::size_t i, const ThroughRoadOpti
       around.footprint->nodes.insert(around.footprint->nodes.end(), chain.begin(), chain.end());
     }
     const Vec2 a = graph.nodes[i].p, b = graph.nodes[end].p;
-    if (!straightBetween(graph, placements, static_cast<int>(i), end, a, b, options, outer)) continue;
+    if (!straightBetween(graph, placements, static_cast<int>(i), end, a, b, options, outer,
+                         options.digitalStraightRoads))
+      continue;
     const Vec2 ab = b - a;
     double along = 0.0;
     const std::vector<int> moved(chain.begin(), chain.end() - 1);
@@ -1242,7 +1278,7 @@ bool consistentWithSegment(const std::vector<Vec2>& placements, const Vec2& a, c
 }
 
 bool straightChain(const std::vector<Vec2>& placements, const Vec2& a, const Vec2& b,
-                   const ThroughRoadOptions& options) {
+                   const ThroughRoadOptions& options, bool anyLine) {
   if (consistentWithSegment(placements, a, b, options.slack)) return true;
   if (!(options.endOffset > 0.0) || placements.size() < 2) return false;
   // The placements form a digital straight line of their own fitted line, and the ends the road is
@@ -1250,8 +1286,10 @@ bool straightChain(const std::vector<Vec2>& placements, const Vec2& a, const Vec
   Vec2 centre, direction;
   fitLine(placements, centre, direction);
   const double ends = options.endOffset * digitalLineBand(direction) + options.slack;
-  return consistentWithLine(placements, centre, direction, options.slack) &&
-         std::fabs(cross(direction, a - centre)) <= ends && std::fabs(cross(direction, b - centre)) <= ends;
+  if (consistentWithLine(placements, centre, direction, options.slack) &&
+      std::fabs(cross(direction, a - centre)) <= ends && std::fabs(cross(direction, b - centre)) <= ends)
+    return true;
+  return anyLine && onADigitalLine(placements, a, b, options);
 }
 
 ThroughRoadStats straightenThroughRoads(RoadGraph& graph, const ThroughRoadOptions& options,

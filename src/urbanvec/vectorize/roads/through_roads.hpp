@@ -114,6 +114,13 @@ struct ThroughRoadOptions {
   /// there (a junction of the two); false = they are left to cross on their links (and the rebuild is
   /// undone).
   bool stemsCross = true;
+  /// A road between two ends is also straight when some straight line, not only its placements' total
+  /// least-squares line, holds every placement within its band and both ends within endOffset of that
+  /// band (the digital straight line test: at a staircase's step, a primary's 2x2 corners or a street's
+  /// cells can lie just outside the fitted line's band although a line holding them all exists).
+  /// Approaches keep the fitted line: a few cells of a road that curves beyond them fit some line.
+  /// false = the fitted line only. Measured: docs/vectorize.md, "Junction clusters".
+  bool digitalStraightRoads = true;
   /// Worker threads (0 = all cores). Does not change the output: the moves are made speculatively on
   /// each thread's copy of the graph and committed in node order (SpeculativeMoves).
   int threads = 0;
@@ -146,8 +153,10 @@ bool consistentWithSegment(const std::vector<Vec2>& placements, const Vec2& a, c
 /// ThroughRoadOptions::endOffset of that line's band of it. B7 tries it on all the chain's placements
 /// (its ends' included) and on those farther than innerRadius from an intersection end's placement
 /// (a crossing's cells bulge around its node, as the arms' fits leave them out).
+/// With anyLine, also when some line (not only the fitted one) holds every placement within its band
+/// and both ends within endOffset of that band (ThroughRoadOptions::digitalStraightRoads).
 bool straightChain(const std::vector<Vec2>& placements, const Vec2& a, const Vec2& b,
-                   const ThroughRoadOptions& options);
+                   const ThroughRoadOptions& options, bool anyLine = false);
 
 ThroughRoadStats straightenThroughRoads(RoadGraph& graph, const ThroughRoadOptions& options,
                                         const Progress& progress = {});

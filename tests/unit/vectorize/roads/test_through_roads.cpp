@@ -100,6 +100,37 @@ TEST(ThroughRoads, DiagonalStaircaseBetweenDeadEndsBecomesItsLine) {
   for (int k : ids) EXPECT_NEAR(g.nodes[k].p.x - g.nodes[k].p.y, 0.0, 1e-9);
 }
 
+TEST(ThroughRoads, StaircaseOffItsFittedLinesBandButOnADigitalLineIsDrawnStraight) {
+  // The 2x2 corners of a primary at 87 degrees (the synthetic 60-degree grid's avenue) between two dead
+  // ends: a run at x = 48, a step at y = 35, a run at x = 47 and an end at (47.33, 30.89). Their total
+  // least-squares line leaves the step's corners just outside its band (0.53 pw) and the line between
+  // the ends leaves (47, 35) 0.58 pw off, but x = 47.5 + 0.05 (y - 35) holds every corner within the band
+  // and both ends within half of it: a digital straight line, drawn straight.
+  const std::vector<Vec2> points{{48, 42},    {48, 40},    {48, 39}, {48, 38},    {48, 37},      {48, 36},
+                                 {48, 35.67}, {48, 35.33}, {48, 35}, {47.67, 35}, {47.33, 35},   {47, 35},
+                                 {47, 34.67}, {47, 34.33}, {47, 34}, {47, 33},    {47.33, 30.89}};
+  auto run = [&](bool rule) {
+    RoadGraph g;
+    const std::vector<int> ids = path(g, points);
+    ThroughRoadOptions options;
+    options.digitalStraightRoads = rule;
+    const ThroughRoadStats s = straightenThroughRoads(g, options);
+    return std::make_pair(s.straightChains, largestTurn(g, ids));
+  };
+  const auto [fitted, fittedTurn] = run(false);
+  EXPECT_EQ(fitted, 0u);
+  EXPECT_GT(fittedTurn, 30.0);
+  const auto [digital, digitalTurn] = run(true);
+  EXPECT_EQ(digital, 1u);
+  EXPECT_LT(digitalTurn, 1e-6);
+  // A curve whose cells leave every line's band stays a curve with the rule too (a bow of 1.2 pw over 16).
+  std::vector<Vec2> bow;
+  for (int k = 0; k <= 16; ++k) bow.push_back({static_cast<double>(k), 1.2 * std::sin(M_PI * k / 16)});
+  RoadGraph g;
+  path(g, bow);
+  EXPECT_EQ(straightenThroughRoads(g, {}).straightChains, 0u);
+}
+
 TEST(ThroughRoads, CurveBeyondTheBandStaysACurve) {
   // A quarter circle of radius 10 pw: its middle lies 2.9 pw off the chord, far outside the band.
   std::vector<Vec2> points;
@@ -167,6 +198,9 @@ TEST(ThroughRoads, StraightRoadBetweenCrossingsLeavesTheCrossingsCellsOut) {
   RoadGraph whole = g;
   ThroughRoadOptions options;
   options.innerRadius = 1.0;  // the bulging cell counts as the street's
+  // With the fitted line only: the bulge and the row beyond it also lie on a digital straight line of
+  // slope -1/36 (one cell a row up, then the row), which digitalStraightRoads accepts.
+  options.digitalStraightRoads = false;
   straightenThroughRoads(whole, options);
   EXPECT_DOUBLE_EQ(whole.nodes[ids[10]].p.y, 0.8);
   straightenThroughRoads(g, {});
