@@ -2,28 +2,39 @@
 // CGAL's interior straight skeleton. Kept in one translation unit because CGAL is slow to compile.
 #include "urbanvec/vectorize/parcels/spine_skeleton.hpp"
 
+// GCC 12 warns that CGAL's empty Epick traits object "may be used uninitialized" when toCgalRing's
+// is_simple() takes it by reference: a false positive (the object has no state).
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_with_holes_2.h>
 #include <CGAL/create_straight_skeleton_from_polygon_with_holes_2.h>
 
+#include <cmath>
 #include <map>
+#include <optional>
 
 namespace urbanvec::vectorize::parcels {
 
 namespace {
 
-// The exact-construction kernel: with the inexact one, CGAL 5.5 crashes (MergeCoincidentNodes) on
-// near-degenerate real blocks.
-using Kernel = CGAL::Exact_predicates_exact_constructions_kernel;
-using CgalPolygon = CGAL::Polygon_2<Kernel>;
-using CgalPolygonWithHoles = CGAL::Polygon_with_holes_2<Kernel>;
+// Both kernels have exact predicates. The inexact-construction one builds a block's skeleton about
+// 14 times faster (0.19 against 2.65 s for the 619 skeletons of the 1024² Monaco mosaic) and
+// its nodes differ from the exact ones by at most 3e-9 cell there; the exact one is the fallback
+// when the fast skeleton is missing or a node lands outside the block (docs/performance.md, round
+// 6c, has the fuzzing that found no other failure of CGAL 5.5.1's builder).
+using FastKernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using ExactKernel = CGAL::Exact_predicates_exact_constructions_kernel;
 
 /// A simple CGAL ring without the closing point, consecutive duplicates or collinear vertices, with
 /// the requested orientation; empty when fewer than 3 vertices remain.
-CgalPolygon toCgalRing(const Ring& ring, bool counterClockwise) {
-  std::vector<Kernel::Point_2> points;
+template <class Kernel>
+CGAL::Polygon_2<Kernel> toCgalRing(const Ring& ring, bool counterClockwise) {
+  using CgalPolygon = CGAL::Polygon_2<Kernel>;
+  std::vector<typename Kernel::Point_2> points;
   for (size_t i = 0; i + 1 < ring.size(); ++i) {
-    const Kernel::Point_2 p(ring[i].x, ring[i].y);
+    const typename Kernel::Point_2 p(ring[i].x, ring[i].y);
     if (points.empty() || points.back() != p) points.push_back(p);
   }
   while (points.size() > 1 && points.front() == points.back()) points.pop_back();
@@ -50,7 +61,9 @@ CgalPolygon toCgalRing(const Ring& ring, bool counterClockwise) {
 /// CGAL's skeleton builder requires every hole strictly inside the outer ring and disjoint from the
 /// other holes; a hole touching the outline at one vertex (valid for GEOS, common in real blocks)
 /// makes it crash. Such shapes go to the Zhang-Suen fallback instead.
-bool holesStrictlyInside(const CgalPolygonWithHoles& shape) {
+template <class Kernel>
+bool holesStrictlyInside(const CGAL::Polygon_with_holes_2<Kernel>& shape) {
+  using CgalPolygon = CGAL::Polygon_2<Kernel>;
   std::vector<const CgalPolygon*> rings{&shape.outer_boundary()};
   for (const CgalPolygon& hole : shape.holes()) {
     for (const auto& p : hole.vertices())
@@ -69,20 +82,21 @@ bool holesStrictlyInside(const CgalPolygonWithHoles& shape) {
   return true;
 }
 
-}  // namespace
-
-SpineGraph straightSkeletonGraph(const Polygon& polygon) {
-  SpineGraph graph;
-  CgalPolygon outer = toCgalRing(polygon.outer, true);
-  if (outer.size() < 3) return graph;
-  CgalPolygonWithHoles shape(outer);
+/// The inner bisectors of the skeleton built with Kernel; nullopt when CGAL returns none.
+template <class Kernel>
+std::optional<SpineGraph> skeletonWithKernel(const Polygon& polygon) {
+  using CgalPolygon = CGAL::Polygon_2<Kernel>;
+  CgalPolygon outer = toCgalRing<Kernel>(polygon.outer, true);
+  if (outer.size() < 3) return SpineGraph{};
+  CGAL::Polygon_with_holes_2<Kernel> shape(outer);
   for (const Ring& h : polygon.holes) {
-    CgalPolygon hole = toCgalRing(h, false);
+    CgalPolygon hole = toCgalRing<Kernel>(h, false);
     if (hole.size() >= 3) shape.add_hole(hole);
   }
-  if (!holesStrictlyInside(shape)) return graph;
+  if (!holesStrictlyInside(shape)) return SpineGraph{};
   auto skeleton = CGAL::create_interior_straight_skeleton_2(shape, Kernel());
-  if (!skeleton) return graph;
+  if (!skeleton) return std::nullopt;
+  SpineGraph graph;
   std::map<int, int> nodeOf;
   auto node = [&](const auto& vertex) {
     auto [it, inserted] = nodeOf.emplace(vertex->id(), static_cast<int>(graph.nodes.size()));
@@ -98,6 +112,37 @@ SpineGraph straightSkeletonGraph(const Polygon& polygon) {
     if (a != b) graph.edges.push_back({std::min(a, b), std::max(a, b)});
   }
   return graph;
+}
+
+}  // namespace
+
+bool skeletonNodesInside(const SpineGraph& graph, const Polygon& polygon) {
+  auto cgalRing = [](const Ring& ring) {
+    CGAL::Polygon_2<FastKernel> out;
+    for (size_t i = 0; i + 1 < ring.size(); ++i) out.push_back(FastKernel::Point_2(ring[i].x, ring[i].y));
+    return out;
+  };
+  const CGAL::Polygon_2<FastKernel> outer = cgalRing(polygon.outer);
+  std::vector<CGAL::Polygon_2<FastKernel>> holes;
+  for (const Ring& h : polygon.holes) holes.push_back(cgalRing(h));
+  for (const Vec2& p : graph.nodes) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) return false;
+    const FastKernel::Point_2 q(p.x, p.y);
+    if (outer.bounded_side(q) != CGAL::ON_BOUNDED_SIDE) return false;
+    for (const auto& hole : holes)
+      if (hole.bounded_side(q) != CGAL::ON_UNBOUNDED_SIDE) return false;
+  }
+  return true;
+}
+
+SpineGraph straightSkeletonGraph(const Polygon& polygon, SkeletonKernel kernel) {
+  if (kernel == SkeletonKernel::Inexact)
+    return skeletonWithKernel<FastKernel>(polygon).value_or(SpineGraph{});
+  if (kernel == SkeletonKernel::InexactThenExact) {
+    std::optional<SpineGraph> fast = skeletonWithKernel<FastKernel>(polygon);
+    if (fast && skeletonNodesInside(*fast, polygon)) return *std::move(fast);
+  }
+  return skeletonWithKernel<ExactKernel>(polygon).value_or(SpineGraph{});
 }
 
 }  // namespace urbanvec::vectorize::parcels

@@ -9,8 +9,18 @@
 
 namespace urbanvec::vectorize::parcels {
 
+/// Which CGAL kernel builds the skeleton (both have exact predicates). InexactThenExact: the
+/// inexact-construction kernel, then the exact one when that gives no skeleton or one that fails
+/// skeletonNodesInside.
+enum class SkeletonKernel { InexactThenExact, Inexact, Exact };
+
 /// Inner bisectors of the interior straight skeleton; an empty graph when CGAL cannot build it
 /// (degenerate or self-touching input) or the skeleton has no inner edge (e.g. a square).
-SpineGraph straightSkeletonGraph(const Polygon& polygon);
+SpineGraph straightSkeletonGraph(const Polygon& polygon,
+                                 SkeletonKernel kernel = SkeletonKernel::InexactThenExact);
+
+/// Every node strictly inside the polygon (off its rings and its holes), with finite coordinates:
+/// what every inner bisector node of a correct skeleton satisfies (it lies at a positive offset).
+bool skeletonNodesInside(const SpineGraph& graph, const Polygon& polygon);
 
 }  // namespace urbanvec::vectorize::parcels

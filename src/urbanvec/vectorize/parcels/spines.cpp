@@ -282,18 +282,18 @@ bool needsSpine(const ParcelBlock& block, const SpineOptions& options) {
   return aspect < options.oblongAspect;
 }
 
+Polygon skeletonInput(const Polygon& block, const SpineOptions& options, const geos::Context& geos) {
+  if (options.skeletonSimplifyTolerance <= 0.0) return block;
+  geos::GeomPtr g = geos.polygon(block);
+  geos::GeomPtr s = geos.own(
+      GEOSTopologyPreserveSimplify_r(geos.handle(), g.get(), options.skeletonSimplifyTolerance), "simplify");
+  MultiPolygon parts = geos.toPolygons(s.get());
+  return parts.size() == 1 ? parts.front() : block;
+}
+
 SpineGraph rawSpineGraph(const Polygon& block, const SpineOptions& options, const geos::Context& geos) {
   if (options.method == SpineMethod::Skeleton) {
-    Polygon simplified = block;
-    if (options.skeletonSimplifyTolerance > 0.0) {
-      geos::GeomPtr g = geos.polygon(block);
-      geos::GeomPtr s =
-          geos.own(GEOSTopologyPreserveSimplify_r(geos.handle(), g.get(), options.skeletonSimplifyTolerance),
-                   "simplify");
-      MultiPolygon parts = geos.toPolygons(s.get());
-      if (parts.size() == 1) simplified = parts.front();
-    }
-    SpineGraph graph = straightSkeletonGraph(simplified);
+    SpineGraph graph = straightSkeletonGraph(skeletonInput(block, options, geos));
     if (!graph.edges.empty()) return graph;
     // No inner bisector: either a near-square block (no spine is right) or a CGAL failure; the
     // pixel method decides both consistently.

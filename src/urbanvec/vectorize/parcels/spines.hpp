@@ -60,8 +60,13 @@ struct SpineGraph {
 /// Spec D6 "which blocks": internal, and oblong or containing a cul-de-sac.
 bool needsSpine(const ParcelBlock& block, const SpineOptions& options);
 
+/// The outline the skeleton is built from: the block simplified (topology kept) by
+/// skeletonSimplifyTolerance, or the block itself when that is 0 or splits it.
+Polygon skeletonInput(const Polygon& block, const SpineOptions& options, const geos::Context& geos);
+
 /// The raw medial graph by the chosen method (the skeleton falls back to Zhang-Suen when CGAL cannot
 /// build one, e.g. on a degenerate polygon).
+
 SpineGraph rawSpineGraph(const Polygon& block, const SpineOptions& options, const geos::Context& geos);
 
 /// Steps 3-8 of D6 on a raw graph: spanning tree (longest edges dropped first, so 8-connected

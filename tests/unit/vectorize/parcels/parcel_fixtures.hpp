@@ -8,8 +8,11 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "urbanvec/core/geometry.hpp"
+#include "urbanvec/io/vector_io.hpp"
 #include "urbanvec/vectorize/parcels/parcel_input.hpp"
 #include "urbanvec/vectorize/parcels/spines.hpp"
 
@@ -119,6 +122,35 @@ inline ParcelBlock randomBlock(std::int64_t id, int w, int h, double angle, doub
   b.polygon.outer = ring;
   b.roadFacing = {ring};
   return b;
+}
+
+/// The sample's truth blocks in cells of 8 m (both samples' grids) about the blocks' south-west corner,
+/// as the pipeline's frame has them: coordinates from 0 to a few hundred, plus `offset` cells (a block
+/// in the far corner of a 4096² grid has coordinates near 4000, and larger rounding errors).
+inline std::vector<Polygon> sampleBlocks(const std::string& city, double offset = 0.0) {
+  const std::string path = std::string(URBANVEC_SOURCE_DIR) + "/sample_data/" + city + "/truth.gpkg";
+  const auto read = io::readVectorLayer(path, "blocks", "truth");
+  EXPECT_TRUE(read.has_value());
+  std::vector<Polygon> blocks;
+  if (!read) return blocks;
+  double minX = 1e300, minY = 1e300;
+  for (const Feature& f : read->layer.features)
+    if (const auto* p = std::get_if<Polygon>(&f.geometry))
+      for (const Vec2& v : p->outer) {
+        minX = std::min(minX, v.x);
+        minY = std::min(minY, v.y);
+      }
+  auto toCells = [&](Ring ring) {
+    for (Vec2& v : ring) v = {(v.x - minX) / 8.0 + offset, (v.y - minY) / 8.0 + offset};
+    return ring;
+  };
+  for (const Feature& f : read->layer.features)
+    if (const auto* p = std::get_if<Polygon>(&f.geometry)) {
+      Polygon cells{toCells(p->outer), {}};
+      for (const Ring& h : p->holes) cells.holes.push_back(toCells(h));
+      if (area(cells) > 20.0) blocks.push_back(std::move(cells));
+    }
+  return blocks;
 }
 
 }  // namespace urbanvec::vectorize::parcels::fixtures

@@ -10,43 +10,14 @@
 #include <utility>
 #include <vector>
 
+#include "parcel_fixtures.hpp"
 #include "urbanvec/core/random.hpp"
-#include "urbanvec/io/vector_io.hpp"
 #include "urbanvec/vectorize/parcels/regular_subdivision.hpp"
 
 using namespace urbanvec;
 using namespace urbanvec::vectorize::parcels;
 
 namespace {
-
-/// The sample's truth blocks in cells of 8 m (both samples' grids) about the blocks' south-west corner,
-/// as the pipeline's frame has them: coordinates from 0 to a few hundred, plus `offset` cells (a block
-/// in the far corner of a 4096² grid has coordinates near 4000, and larger rounding errors).
-std::vector<Polygon> sampleBlocks(const std::string& city, double offset = 0.0) {
-  const std::string path = std::string(URBANVEC_SOURCE_DIR) + "/sample_data/" + city + "/truth.gpkg";
-  const auto read = io::readVectorLayer(path, "blocks", "truth");
-  EXPECT_TRUE(read.has_value());
-  std::vector<Polygon> blocks;
-  if (!read) return blocks;
-  double minX = 1e300, minY = 1e300;
-  for (const Feature& f : read->layer.features)
-    if (const auto* p = std::get_if<Polygon>(&f.geometry))
-      for (const Vec2& v : p->outer) {
-        minX = std::min(minX, v.x);
-        minY = std::min(minY, v.y);
-      }
-  auto toCells = [&](Ring ring) {
-    for (Vec2& v : ring) v = {(v.x - minX) / 8.0 + offset, (v.y - minY) / 8.0 + offset};
-    return ring;
-  };
-  for (const Feature& f : read->layer.features)
-    if (const auto* p = std::get_if<Polygon>(&f.geometry)) {
-      Polygon cells{toCells(p->outer), {}};
-      for (const Ring& h : p->holes) cells.holes.push_back(toCells(h));
-      if (area(cells) > 20.0) blocks.push_back(std::move(cells));
-    }
-  return blocks;
-}
 
 /// The first half of the outer ring: road-facing lines that cover some parcel edges and not others.
 MultiLineString halfOfOuterRing(const Polygon& block) {
@@ -86,7 +57,7 @@ class RealBlocks : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(RealBlocks, ScreenedSplitsGiveThePlainVerdictAndChildren) {
   geos::Context geos;
-  const std::vector<Polygon> blocks = sampleBlocks(GetParam());
+  const std::vector<Polygon> blocks = fixtures::sampleBlocks(GetParam());
   ASSERT_GE(blocks.size(), 9u);
   // Rules that reject for each reason in turn: the minimum area and aspect near their typical values.
   const SplitRules rules = rulesWith(12.0, 0.3, true);
@@ -134,8 +105,8 @@ TEST_P(RealBlocks, ThresholdsOneUlpFromTheChildrensValuesGiveThePlainVerdict) {
   // must leave a cut whose child sits at a threshold to the plain check. Thresholds set to the plain
   // children's area and aspect and one ulp either side.
   geos::Context geos;
-  std::vector<Polygon> blocks = sampleBlocks(GetParam());
-  for (Polygon& far : sampleBlocks(GetParam(), 4000.0)) blocks.push_back(std::move(far));
+  std::vector<Polygon> blocks = fixtures::sampleBlocks(GetParam());
+  for (Polygon& far : fixtures::sampleBlocks(GetParam(), 4000.0)) blocks.push_back(std::move(far));
   RegularSubdivisionOptions options;
   Rng rng(11);
   int cases = 0;
@@ -182,7 +153,7 @@ TEST_P(RealBlocks, ThresholdsOneUlpFromTheChildrensValuesGiveThePlainVerdict) {
 
 TEST_P(RealBlocks, InheritedFrontageEntriesEqualAFreshMeasure) {
   geos::Context geos;
-  const std::vector<Polygon> blocks = sampleBlocks(GetParam());
+  const std::vector<Polygon> blocks = fixtures::sampleBlocks(GetParam());
   ASSERT_GE(blocks.size(), 9u);
   const SplitRules rules = rulesWith(6.0, 0.2, false);
   RegularSubdivisionOptions options;
