@@ -97,7 +97,6 @@ BlocksResult vectorizeBlocks(const RoadNetwork& network, const SimulatedCity& ci
     throw invalidInput("The land-use grid is " + std::to_string(city.grid.width) + " x " +
                        std::to_string(city.grid.height) + " cells but the grid it belongs to is " +
                        std::to_string(grid.width) + " x " + std::to_string(grid.height) + ".");
-  const Grid<int> blockOfCell = simulatedBlockOfCells(city);
   BlocksResult result;
   BlocksStats& stats = result.stats;
   stats.simulatedBlocks = static_cast<int>(city.blocks.size());
@@ -119,6 +118,8 @@ BlocksResult vectorizeBlocks(const RoadNetwork& network, const SimulatedCity& ci
   result.perimeterCells = outline.perimeter;
   stats.absorbedSlivers =
       absorbSlivers(roads.pieces, outline.slivers, options.outline.precisionGrid, options.outline.threads);
+  // Only D2-D5 read the simulated block of each cell: built after D1's union, not beside it.
+  const Grid<int> blockOfCell = simulatedBlockOfCells(city);
 
   // D3 + D4: external blocks from the perimeter and the boundary lines.
   if (concurrentWater.started()) {

@@ -50,7 +50,11 @@ const char* className(NodeType t) {
 
 }  // namespace
 
-RoadNetwork buildRoadNetwork(const RoadGraph& g, double simplifyTolerance) {
+namespace {
+
+/// buildRoadNetwork's segments and ends before the simplification (its planar graph and walks are
+/// gone when this returns, so they do not stay beside the simplifier's index).
+RoadNetwork networkChains(const RoadGraph& g) {
   RoadNetwork net;
   const size_t n = g.nodes.size();
   std::vector<std::int32_t> outId(n, -1);
@@ -125,14 +129,25 @@ RoadNetwork buildRoadNetwork(const RoadGraph& g, double simplifyTolerance) {
     seg.toNode = outId[w.nodes.back()];
     net.segments.push_back(std::move(seg));
   }
-  if (simplifyTolerance > 0 && !net.segments.empty()) {
-    std::vector<LineString> lines;
-    lines.reserve(net.segments.size());
-    for (const NetworkSegment& s : net.segments) lines.push_back(s.points);
-    lines = simplifyTogether(lines, simplifyTolerance);
-    for (size_t k = 0; k < lines.size(); ++k) net.segments[k].points = std::move(lines[k]);
-    releaseFreedMemory();  // the simplifier's index: ~400 bytes per road vertex
-  }
+  return net;
+}
+
+}  // namespace
+
+void simplifyRoadNetwork(RoadNetwork& net, double tolerance) {
+  if (!(tolerance > 0) || net.segments.empty()) return;
+  std::vector<LineString> lines;
+  lines.reserve(net.segments.size());
+  // Moved, not copied: simplifyTogether returns either the simplified lines or these.
+  for (NetworkSegment& s : net.segments) lines.push_back(std::move(s.points));
+  lines = simplifyTogether(lines, tolerance);
+  for (size_t k = 0; k < lines.size(); ++k) net.segments[k].points = std::move(lines[k]);
+  releaseFreedMemory();  // the simplifier's index: ~400 bytes per road vertex
+}
+
+RoadNetwork buildRoadNetwork(const RoadGraph& g, double simplifyTolerance) {
+  RoadNetwork net = networkChains(g);
+  simplifyRoadNetwork(net, simplifyTolerance);
   return net;
 }
 

@@ -25,6 +25,10 @@ std::vector<LineString> simplifyTogether(const std::vector<LineString>& lines, d
 /// with GEOS's topology-preserving simplifier, which keeps their end nodes and adds no crossings.
 RoadNetwork buildRoadNetwork(const RoadGraph& graph, double simplifyTolerance = 0.0);
 
+/// The simplification of buildRoadNetwork, on a network built with tolerance 0: buildRoadNetwork(g, t)
+/// is buildRoadNetwork(g, 0) simplified with tolerance t. Does nothing for t <= 0.
+void simplifyRoadNetwork(RoadNetwork& network, double tolerance);
+
 /// Hands the heap pages that freed memory left behind back to the system (glibc's malloc_trim; a no-op
 /// elsewhere). The GEOS stages free hundreds of MB of small objects at city scale; without this they
 /// stay resident and the next stage's allocations pile on top of them.
