@@ -503,7 +503,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   result = vectorize::VectorizeResult();
   input.landUse = Grid<std::uint8_t>();
   input.openRegions = Grid<std::uint8_t>();
-  vectorize::releaseFreedMemory();
+  releaseFreedMemory();
   out.writeReleasing(outputLayers, input.spec.crsWkt);
   outputLayers.clear();
   if (debugOut) {

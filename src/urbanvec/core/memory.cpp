@@ -5,6 +5,10 @@
 #include <fstream>
 #include <string>
 
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
 namespace urbanvec {
 
 namespace {
@@ -41,6 +45,12 @@ void resetPeakMemory() {
 
 long processPeakMemoryKb() {
   return std::max(earlierPeakKb.load(), peakMemoryKb());
+}
+
+void releaseFreedMemory() {
+#if defined(__GLIBC__)
+  malloc_trim(0);
+#endif
 }
 
 }  // namespace urbanvec

@@ -20,4 +20,9 @@ void resetPeakMemory();
 /// only the peak since the last reset: this is the figure to compare.)
 long processPeakMemoryKb();
 
+/// Hands the heap pages that freed memory left behind back to the system (glibc's malloc_trim; a no-op
+/// elsewhere). The GEOS stages free hundreds of MB of small objects at city scale; without this they
+/// stay resident and the next stage's allocations pile on top of them.
+void releaseFreedMemory();
+
 }  // namespace urbanvec

@@ -8,6 +8,7 @@
 
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/core/geos.hpp"
+#include "urbanvec/core/memory.hpp"
 #include "urbanvec/vectorize/roads/road_output.hpp"
 
 namespace urbanvec::vectorize {

@@ -4,11 +4,8 @@
 #include <cstdint>
 #include <tuple>
 
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
-
 #include "urbanvec/core/geos.hpp"
+#include "urbanvec/core/memory.hpp"
 #include "urbanvec/core/planar_graph.hpp"
 #include "urbanvec/vectorize/roads/road_graph_build.hpp"
 
@@ -149,12 +146,6 @@ RoadNetwork buildRoadNetwork(const RoadGraph& g, double simplifyTolerance) {
   RoadNetwork net = networkChains(g);
   simplifyRoadNetwork(net, simplifyTolerance);
   return net;
-}
-
-void releaseFreedMemory() {
-#if defined(__GLIBC__)
-  malloc_trim(0);
-#endif
 }
 
 std::vector<Layer> roadLayers(const RoadNetwork& net, const GridSpec& spec) {

@@ -29,11 +29,6 @@ RoadNetwork buildRoadNetwork(const RoadGraph& graph, double simplifyTolerance = 
 /// is buildRoadNetwork(g, 0) simplified with tolerance t. Does nothing for t <= 0.
 void simplifyRoadNetwork(RoadNetwork& network, double tolerance);
 
-/// Hands the heap pages that freed memory left behind back to the system (glibc's malloc_trim; a no-op
-/// elsewhere). The GEOS stages free hundreds of MB of small objects at city scale; without this they
-/// stay resident and the next stage's allocations pile on top of them.
-void releaseFreedMemory();
-
 /// `roads` (road_id, road_class, from_node, to_node, length in CRS units) and `road_nodes` (node_id,
 /// kind, degree) in world coordinates. Ids are 1-based indices into the network's vectors.
 std::vector<Layer> roadLayers(const RoadNetwork& network, const GridSpec& spec);
