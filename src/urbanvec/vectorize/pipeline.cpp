@@ -5,6 +5,7 @@
 #include <chrono>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "urbanvec/core/error.hpp"
@@ -144,6 +145,8 @@ VectorizeResult runPipeline(const VectorizeInput& input, VectorizeInput* release
   // take the first 30% of the progress range when stages C-E follow.
   const Progress roadProgress = options.roadsOnly ? progress : subProgress(progress, 0.0, 0.3);
   double done = 0;
+  // Set by a stage that releases the graph before it ends (F): the counts it had when released.
+  std::optional<std::pair<std::size_t, std::size_t>> releasedGraphCounts;
   auto run = [&](const std::string& id, const std::string& name, double weight, bool graphStage,
                  const std::function<std::string(const Progress&)>& body) {
     const Progress sub = subProgress(roadProgress, done, std::min(1.0, done + weight));
@@ -156,8 +159,8 @@ VectorizeResult runPipeline(const VectorizeInput& input, VectorizeInput* release
     report.summary = body(sub);
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     report.peakMemoryKb = peakMemoryKb();
-    report.nodes = graph.aliveCount();
-    report.links = graph.linkCount();
+    report.nodes = releasedGraphCounts ? releasedGraphCounts->first : graph.aliveCount();
+    report.links = releasedGraphCounts ? releasedGraphCounts->second : graph.linkCount();
     result.stages.push_back(report);
     if (graphStage && options.keepStageGraphs) result.stageGraphs.emplace_back(id + " " + name, graph);
     done = std::min(1.0, done + weight);
@@ -301,6 +304,13 @@ VectorizeResult runPipeline(const VectorizeInput& input, VectorizeInput* release
     // graph for both (its planar graph is gone before the simplifier builds its index).
     const bool simplified = options.outputSimplification > 0;
     result.network = buildRoadNetwork(graph, 0.0);
+    // Nothing reads the graph after this walk: it goes before the simplifier builds its index (about a
+    // hundred bytes a node), unless the caller keeps it.
+    if (!options.keepRoadGraph) {
+      releasedGraphCounts.emplace(graph.aliveCount(), graph.linkCount());
+      graph = RoadGraph();
+      releaseFreedMemory();
+    }
     RoadNetwork exact;
     if (simplified) {
       exact = result.network;
@@ -322,8 +332,6 @@ VectorizeResult runPipeline(const VectorizeInput& input, VectorizeInput* release
                   " simplified less (uncovering a road cell), ", curves.segments, " drawn with curves (",
                   curves.points, " spline points), ", curves.restored, " kept as polylines");
   });
-  // The graph's nodes and links (about a hundred bytes a node) are in the network now.
-  if (!options.keepRoadGraph) result.roads = RoadGraph();
   releaseFreedMemory();
   if (!options.roadsOnly) {
     const auto t0 = std::chrono::steady_clock::now();
