@@ -10,6 +10,7 @@
 #include "urbanvec/app/command.hpp"
 #include "urbanvec/app/grid_input.hpp"
 #include "urbanvec/core/error.hpp"
+#include "urbanvec/core/memory.hpp"
 #include "urbanvec/io/atomic_output.hpp"
 #include "urbanvec/io/vector_io.hpp"
 #include "urbanvec/vectorize/pipeline.hpp"
@@ -21,6 +22,53 @@ namespace {
 
 using app::option;
 using app::Role;
+
+/// Bytes of a file, or of every file under a folder (a per-layer output); 0 when missing.
+std::uintmax_t bytesOnDisk(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (path.empty()) return 0;
+  if (fs::is_regular_file(path, ec)) return fs::file_size(path, ec);
+  std::uintmax_t sum = 0;
+  if (fs::is_directory(path, ec))
+    for (const fs::directory_entry& e : fs::recursive_directory_iterator(path, ec))
+      if (e.is_regular_file(ec)) sum += e.file_size(ec);
+  return sum;
+}
+
+/// The -timings memory line: the run's peak resident memory, the stage it fell in, and its ratio to
+/// the input files plus the output written (issue 21's target is at most 2).
+void printMemoryLine(std::ostream& s, const std::vector<vectorize::StageReport>& stages,
+                     const app::GridInputPaths& paths, const std::string& output) {
+  const long peak = processPeakMemoryKb();
+  if (peak < 0) {
+    s << "memory: unknown on this system\n";
+    return;
+  }
+  // The last stage's window (since its reset) runs on through the writing of the output.
+  std::string where = "reading the input";
+  long best = -1;
+  for (const vectorize::StageReport& r : stages)
+    if (r.peakMemoryKb > best) {
+      best = r.peakMemoryKb;
+      where = "stage " + r.id;
+    }
+  if (peakMemoryKb() > best) {
+    best = peakMemoryKb();
+    where = "writing the output";
+  }
+  if (peak > best) where = "reading the input";
+  std::uintmax_t input = 0;
+  for (const std::string* p : {&paths.landUse, &paths.density, &paths.parcels, &paths.parcelTable,
+                               &paths.classes, &paths.openRegions})
+    input += bytesOnDisk(*p);
+  const std::uintmax_t written = bytesOnDisk(output);
+  const double mb = 1024.0 * 1024.0;
+  s << std::fixed << std::setprecision(1) << "memory: peak " << peak / 1024.0 << " MB (" << where
+    << "), input " << input / mb << " MB, output " << written / mb
+    << " MB, peak / (input + output) = " << std::setprecision(2)
+    << (input + written > 0 ? peak * 1024.0 / static_cast<double>(input + written) : 0.0) << "\n";
+}
 using app::ValueType;
 
 /// A default taken from the options struct, printed without trailing zeros.
@@ -415,7 +463,7 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
     paths.window = io::RasterWindow{v[0], v[1], v[2], v[3]};
   }
   std::vector<std::string> warnings;
-  const vectorize::VectorizeInput input = app::loadGridInput(paths, &warnings);
+  vectorize::VectorizeInput input = app::loadGridInput(paths, &warnings);
   for (const std::string& w : warnings) ctx.warn(w);
   // Auto decides from metadata that some GDAL tools keep and others drop (docs/vectorize.md, "Choosing
   // the removals from the grid"), so the user sees which mode ran and why.
@@ -428,7 +476,8 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
              << ")\n";
   }
 
-  vectorize::VectorizeResult result = vectorize::vectorize(input, options, ctx.progress);
+  // The density and parcel grids go once A5 has read them.
+  vectorize::VectorizeResult result = vectorize::vectorizeReleasingInput(input, options, ctx.progress);
   for (const std::string& w : result.warnings) ctx.warn(w);
 
   if (args.flag("-check")) {
@@ -445,11 +494,22 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
                " cells from every output road");
   }
 
-  out.write(result.layers, input.spec.crsWkt);
+  // Only the layers, the stage reports and the -debug-stages graphs are needed from here: the rest of
+  // the result (grids, simulated blocks, network, reports per block) goes before the layers are
+  // written, and each layer goes once it is in the file.
+  std::vector<Layer> outputLayers = std::move(result.layers);
+  std::vector<vectorize::StageReport> stages = std::move(result.stages);
+  std::vector<std::pair<std::string, vectorize::RoadGraph>> stageGraphs = std::move(result.stageGraphs);
+  result = vectorize::VectorizeResult();
+  input.landUse = Grid<std::uint8_t>();
+  input.openRegions = Grid<std::uint8_t>();
+  releaseFreedMemory();
+  out.writeReleasing(outputLayers, input.spec.crsWkt);
+  outputLayers.clear();
   if (debugOut) {
     std::vector<Layer> layers;
     int k = 0;
-    for (const auto& [stage, graph] : result.stageGraphs) {
+    for (const auto& [stage, graph] : stageGraphs) {
       std::ostringstream prefix;
       prefix << std::setw(2) << std::setfill('0') << ++k << "_" << stage << "_";
       std::string p = prefix.str();
@@ -469,11 +529,12 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
   if (args.flag("-timings") && ctx.out) {
     std::ostream& s = *ctx.out;
     s << "stage  name                          seconds  peak_MB    nodes    links  summary\n";
-    for (const vectorize::StageReport& r : result.stages)
+    for (const vectorize::StageReport& r : stages)
       s << std::left << std::setw(6) << r.id << " " << std::setw(29) << r.name << std::right << std::fixed
         << std::setprecision(3) << std::setw(8) << r.seconds << " " << std::setw(8) << std::setprecision(1)
         << (r.peakMemoryKb >= 0 ? r.peakMemoryKb / 1024.0 : -1.0) << " " << std::setw(8) << r.nodes << " "
         << std::setw(8) << r.links << "  " << r.summary << "\n";
+    printMemoryLine(s, stages, paths, output);
   }
 }
 

@@ -136,6 +136,24 @@ for stage in "raw blocks" "patch cleaning" "road graph" "perimeters" "parcels" "
 done
 expect_stdout_contains "PROGRESS 100"
 expect_stdout_contains "peak_MB"
+# -timings ends with the run's peak resident memory, the stage it fell in, and its ratio to the input
+# files and the output written (issue 21). The peak is more than the program's own code takes (GDAL,
+# PROJ and GEOS alone are over 20 MB resident) and below what this grid could need; the sizes are those
+# of the files on disk; the ratio is the peak over their sum.
+mem=$(grep "^memory: peak " <<<"$OUT" || true)
+field() { sed -n "s/^memory: peak \([0-9.]*\) MB (\(stage [A-Z0-9.-]*\|writing the output\|reading the input\)), input \([0-9.]*\) MB, output \([0-9.]*\) MB, peak \/ (input + output) = \([0-9.]*\)\$/\\$1/p" <<<"$mem"; }
+peak=$(field 1) in_mb=$(field 3) out_mb=$(field 4) ratio=$(field 5)
+[ -n "$ratio" ] || fail "no memory line after the -timings table: '$mem'"
+if [ -n "$ratio" ]; then
+  awk -v p="$peak" 'BEGIN { exit !(p > 20 && p < 2000) }' || fail "implausible peak memory $peak MB"
+  want_in=$(stat -c %s "$g/landuse.tif" | awk '{ printf "%.1f", $1 / 1048576 }')
+  want_out=$(stat -c %s "$WORK/p.gpkg" | awk '{ printf "%.1f", $1 / 1048576 }')
+  expect_eq "$in_mb" "$want_in" "memory line: input MB"
+  expect_eq "$out_mb" "$want_out" "memory line: output MB"
+  awk -v p="$peak" -v r="$ratio" -v i="$(stat -c %s "$g/landuse.tif")" -v o="$(stat -c %s "$WORK/p.gpkg")" \
+    'BEGIN { want = p * 1048576 / (i + o); exit !(r > 0 && (r - want) ^ 2 < (0.01 * want + 0.01) ^ 2) }' ||
+    fail "memory line: ratio $ratio is not the peak over input + output"
+fi
 layers=$(ogrinfo -ro -q "$WORK/stages/stages.gpkg" | grep -c "_links (Line String)" || true)
 # One links/nodes pair per graph stage: A4, A4.8, B1-B7.
 expect_eq "$layers" "9" "debug stage layers"

@@ -236,8 +236,12 @@ std::string vectorFormatFor(const std::string& path, const std::string& requeste
   return "GPKG";
 }
 
-void writeVectorDataset(const std::string& path, const std::vector<Layer>& layers,
-                        const VectorWriteOptions& options) {
+namespace {
+
+/// writeVectorDataset; with `release` (the same vector as `layers`), each layer's features are freed
+/// as soon as the layer is written.
+void writeDataset(const std::string& path, const std::vector<Layer>& layers,
+                  const VectorWriteOptions& options, std::vector<Layer>* release) {
   const std::string format = vectorFormatFor(path, options.format);
   GDALDriver* driver = vectorDriver(format);
   // GeoPackage stamps each table with the time of writing; a fixed stamp keeps the same input and
@@ -256,7 +260,8 @@ void writeVectorDataset(const std::string& path, const std::vector<Layer>& layer
   if (transactions) ds->StartTransaction();
   static std::atomic<long> featuresWritten{0};
   const long failAfter = faultSetting("write-fail-after");
-  for (const Layer& layer : layers) {
+  for (size_t k = 0; k < layers.size(); ++k) {
+    const Layer& layer = layers[k];
     if (const long delay = faultSetting("write-delay-ms"))
       std::this_thread::sleep_for(std::chrono::milliseconds(delay));
     CPLStringList lco;
@@ -304,6 +309,7 @@ void writeVectorDataset(const std::string& path, const std::vector<Layer>& layer
         throw ioError("cannot write a feature of layer '" + layer.name +
                       "' (fault injected by URBANVEC_FAULT)");
     }
+    if (release) std::vector<Feature>().swap((*release)[k].features);
   }
   if (format == "GPKG") {
     std::map<std::string, std::string> styles = options.layerStylesQml;
@@ -319,6 +325,13 @@ void writeVectorDataset(const std::string& path, const std::vector<Layer>& layer
   GDALClose(ds.release());
   if (CPLGetLastErrorType() >= CE_Failure)
     throw ioError("cannot finish '" + path + "' (" + std::string(lastGdalMessage()) + ")");
+}
+
+}  // namespace
+
+void writeVectorDataset(const std::string& path, const std::vector<Layer>& layers,
+                        const VectorWriteOptions& options) {
+  writeDataset(path, layers, options, nullptr);
 }
 
 namespace {
@@ -391,6 +404,23 @@ void VectorOutput::write(const std::vector<Layer>& layers, const std::string& cr
   for (const Layer& layer : layers)
     writeVectorDataset((std::filesystem::path(output_->tempPath()) / (layer.name + extension_)).string(),
                        {layer}, options_);
+}
+
+void VectorOutput::writeReleasing(std::vector<Layer>& layers, const std::string& crsWkt) {
+  if (!crsWkt.empty()) options_.crsWkt = crsWkt;
+  if (!layerPerFile_) {
+    writeDataset(output_->tempPath(), layers, options_, &layers);
+    return;
+  }
+  for (Layer& layer : layers) {
+    std::vector<Layer> one(1);
+    one[0].name = layer.name;
+    one[0].geometryType = layer.geometryType;
+    one[0].fields = layer.fields;
+    one[0].features.swap(layer.features);
+    writeDataset((std::filesystem::path(output_->tempPath()) / (layer.name + extension_)).string(), one,
+                 options_, &one);
+  }
 }
 
 void VectorOutput::commit(const Progress& progress) {

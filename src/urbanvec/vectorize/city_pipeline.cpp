@@ -8,6 +8,7 @@
 
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/core/geos.hpp"
+#include "urbanvec/core/memory.hpp"
 #include "urbanvec/vectorize/roads/road_output.hpp"
 
 namespace urbanvec::vectorize {
@@ -279,20 +280,25 @@ CityResult vectorizeCity(const RoadNetwork& network, const Grid<std::uint8_t>& c
                          const GridSpec& grid, const CityOptions& options, const Progress& progress) {
   CityResult result;
   const Frame frame{grid};
-  const SimulatedCity city = simulatedCity(cells, blocks, simParcels);
   BlocksOptions blocksOptions = options.blocks;
   blocksOptions.road.threads = options.parcels.threads;  // one thread setting for every parallel stage
   blocksOptions.water.threads = options.parcels.threads;
   blocksOptions.outline.threads = options.parcels.threads;
   blocksOptions.external.threads = options.parcels.threads;
-  result.blocks = vectorizeBlocks(network, city, grid, blocksOptions, subProgress(progress, 0.0, 0.35));
-  releaseFreedMemory();  // the overlays of C-D5
+  {
+    // Only C-D5 read the simulated city (its cell lists take 8 bytes per cell of a block or parcel).
+    const SimulatedCity city = simulatedCity(cells, blocks, simParcels);
+    result.blocks = vectorizeBlocks(network, city, grid, blocksOptions, subProgress(progress, 0.0, 0.35));
+  }
+  releaseFreedMemory();  // the overlays of C-D5 and the simulated city
   for (BlockInfo& info : result.blocks.blockInfo) canonicalizeOutline(info.shape);
 
   reportProgress(progress, 0.35, "road frontage");
-  const std::vector<MultiLineString> facing =
+  std::vector<MultiLineString> facing =
       roadFacingEdges(result.blocks, frame, options.roadFacingTolerance, options.parcels.threads);
   releaseFreedMemory();
+  std::vector<parcels::ParcelBlock> parcelBlocks;  // the part 3 input, aligned with blocks.blockInfo
+  parcelBlocks.reserve(result.blocks.blockInfo.size());
   for (size_t i = 0; i < result.blocks.blockInfo.size(); ++i) {
     const BlockInfo& info = result.blocks.blockInfo[i];
     parcels::ParcelBlock block;
@@ -300,7 +306,7 @@ CityResult vectorizeCity(const RoadNetwork& network, const Grid<std::uint8_t>& c
     block.polygon = info.shape;
     block.external = !info.internal;
     block.hasCulDeSac = info.hasCulDeSac;
-    block.roadFacing = facing[i];
+    block.roadFacing = std::move(facing[i]);
     if (block.roadFacing.empty() && options.islandFrontage) {
       block.roadFacing.push_back(info.shape.outer);
       for (const Ring& hole : info.shape.holes) block.roadFacing.push_back(hole);
@@ -317,10 +323,12 @@ CityResult vectorizeCity(const RoadNetwork& network, const Grid<std::uint8_t>& c
     if (first >= 0 && cells.width > 0)
       block.seedStream = (static_cast<std::uint64_t>(first / cells.width + options.originRow) << 32) |
                          static_cast<std::uint64_t>(first % cells.width + options.originCol);
-    result.parcelBlocks.push_back(std::move(block));
+    parcelBlocks.push_back(std::move(block));
   }
-  result.parcels =
-      parcels::vectorizeParcels(result.parcelBlocks, options.parcels, subProgress(progress, 0.4, 0.97));
+  std::vector<MultiLineString>().swap(facing);
+  result.parcels = parcels::vectorizeParcels(parcelBlocks, options.parcels, subProgress(progress, 0.4, 0.97));
+  std::vector<parcels::ParcelBlock>().swap(parcelBlocks);  // copies of the outlines, frontage, summaries
+  releaseFreedMemory();
 
   reportProgress(progress, 0.97, "city layers");
   const double cellArea = grid.transform.cellSize() * grid.transform.cellSize();
@@ -351,24 +359,32 @@ CityResult vectorizeCity(const RoadNetwork& network, const Grid<std::uint8_t>& c
   const int hasSpineField = result.blocks.blocks.fieldIndex("has_spine");
   std::int64_t nextParcelId = 1;
   std::int64_t nextSpineId = 1;
+  std::size_t parcelCount = 0;
+  for (const parcels::BlockParcels& out : result.parcels.blocks) parcelCount += out.parcels.size();
+  parcelLayer.features.reserve(parcelCount);
+  report.features.reserve(result.parcels.blocks.size());
+  // Each spine and parcel polygon is released once its world copy is in its layer: the layers hold
+  // the only copy of the geometry (ParcelsResult keeps the reports and populations).
   for (size_t i = 0; i < result.parcels.blocks.size(); ++i) {
-    const parcels::BlockParcels& out = result.parcels.blocks[i];
-    const std::int64_t blockId = result.parcelBlocks[i].blockId;
+    parcels::BlockParcels& out = result.parcels.blocks[i];
+    const std::int64_t blockId = result.blocks.blockInfo[i].blockId;
     if (!out.spine.empty()) {
       MultiLineString world;
       for (const LineString& line : out.spine) world.push_back(frame.toWorld(line));
-      spines.features.push_back({world, {nextSpineId++, blockId}});
+      spines.features.push_back({std::move(world), {nextSpineId++, blockId}});
     }
     if (hasSpineField >= 0 && i < result.blocks.blocks.features.size())
       result.blocks.blocks.features[i].values[static_cast<size_t>(hasSpineField)] =
           std::int64_t{out.report.hasSpine && !out.spine.empty() ? 1 : 0};
-    for (const parcels::VectorParcel& parcel : out.parcels) {
+    for (parcels::VectorParcel& parcel : out.parcels) {
       const double areaM2 = parcel.area * cellArea;
       const std::string use = parcel.undeveloped ? "undeveloped" : std::string(landUseName(parcel.use));
       parcelLayer.features.push_back({frame.toWorld(parcel.polygon),
                                       {nextParcelId++, blockId, use, parcel.population,
                                        areaM2 > 0.0 ? parcel.population / areaM2 : 0.0, areaM2}});
+      parcel.polygon = Polygon();
     }
+    out.spine = MultiLineString();
     const parcels::BlockReport& r = out.report;
     report.features.push_back(
         {std::monostate{},
@@ -379,7 +395,7 @@ CityResult vectorizeCity(const RoadNetwork& network, const Grid<std::uint8_t>& c
   // Moved, not copied (an initializer list copies): at city scale each layer is tens of MB.
   result.layers.reserve(6);
   result.layers.push_back(std::move(result.blocks.pavement));
-  result.layers.push_back(result.blocks.blocks);  // blocks.blocks stays: callers count its features
+  result.layers.push_back(std::move(result.blocks.blocks));
   result.layers.push_back(std::move(result.blocks.water));
   result.layers.push_back(std::move(spines));
   result.layers.push_back(std::move(parcelLayer));

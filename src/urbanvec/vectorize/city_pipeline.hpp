@@ -36,9 +36,10 @@ struct CityOptions {
 };
 
 struct CityResult {
-  /// Stages C-D5; its `pavement` and `water` layers are moved into `layers` (left empty here).
+  /// Stages C-D5; its `pavement`, `blocks` and `water` layers are moved into `layers` (left empty here).
   BlocksResult blocks;
-  std::vector<parcels::ParcelBlock> parcelBlocks;  ///< the part 3 input, aligned with blocks.blockInfo
+  /// Stages D6-E6, aligned with blocks.blockInfo; each block's spine and parcel polygons are moved into
+  /// `layers` (left empty here: the reports, populations and areas stay).
   parcels::ParcelsResult parcels;
   /// pavement, blocks, water, spines, parcels, vectorize_report (world coordinates).
   std::vector<Layer> layers;

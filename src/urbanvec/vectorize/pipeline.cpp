@@ -3,33 +3,19 @@
 
 #include <algorithm>
 #include <chrono>
-#include <fstream>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "urbanvec/core/error.hpp"
-#include "urbanvec/core/parallel.hpp"
+#include "urbanvec/core/memory.hpp"
 #include "urbanvec/vectorize/roads/road_checks.hpp"
 #include "urbanvec/vectorize/roads/road_output.hpp"
 
 namespace urbanvec::vectorize {
 
 namespace {
-
-/// Resets the kernel's resident-memory high-water mark (Linux "clear_refs" 5); harmless elsewhere.
-void resetPeakMemory() {
-  std::ofstream f("/proc/self/clear_refs");
-  if (f) f << "5";
-}
-
-long peakMemoryKb() {
-  std::ifstream f("/proc/self/status");
-  std::string line;
-  while (std::getline(f, line))
-    if (line.rfind("VmHWM:", 0) == 0) return std::stol(line.substr(6));
-  return -1;
-}
 
 void validate(const VectorizeInput& in) {
   const Grid<std::uint8_t>& lu = in.landUse;
@@ -65,31 +51,45 @@ std::string counts(const T&... parts) {
   return s.str();
 }
 
-/// Every person of the input reaches a parcel of the parcels layer, or the warnings say where the
-/// others went (the A5 warning already names the parcels outside every block).
-void populationWarnings(const VectorizeInput& input, VectorizeResult& result) {
-  double density = 0, densityWithoutParcel = 0;
+/// The input's population figures the final warnings need, taken before A5 so that the density and
+/// parcel grids can go once A5 has read them (vectorizeReleasingInput).
+struct InputPopulation {
+  bool hasParcels = false;
+  bool hasParcelTable = false;
+  double density = 0;
+  double densityWithoutParcel = 0;
   std::size_t cellsWithoutParcel = 0;
-  const bool hasParcels = input.parcelIds.size() != 0;
+};
+
+InputPopulation inputPopulation(const VectorizeInput& input) {
+  InputPopulation s;
+  s.hasParcels = input.parcelIds.size() != 0;
+  s.hasParcelTable = !input.parcelTable.empty();
   for (size_t i = 0; i < input.density.cells.size(); ++i) {
-    density += input.density.cells[i];
-    if (hasParcels && input.parcelIds.cells[i] == 0 && input.density.cells[i] > 0) {
-      densityWithoutParcel += input.density.cells[i];
-      ++cellsWithoutParcel;
+    s.density += input.density.cells[i];
+    if (s.hasParcels && input.parcelIds.cells[i] == 0 && input.density.cells[i] > 0) {
+      s.densityWithoutParcel += input.density.cells[i];
+      ++s.cellsWithoutParcel;
     }
   }
-  if (!hasParcels && density > 0)
-    result.warnings.push_back("the density grid holds " + peopleText(density) +
+  return s;
+}
+
+/// Every person of the input reaches a parcel of the parcels layer, or the warnings say where the
+/// others went (the A5 warning already names the parcels outside every block).
+void populationWarnings(const InputPopulation& input, VectorizeResult& result) {
+  if (!input.hasParcels && input.density > 0)
+    result.warnings.push_back("the density grid holds " + peopleText(input.density) +
                               ", but without a parcels grid (-parcels) there are no input parcels to "
                               "carry them: " +
                               (result.city.blocks.blockInfo.empty()
                                    ? "the parcels layer is empty (the grid has no blocks)"
                                    : "each block is one undeveloped parcel with population 0"));
   // With a parcel table the table's population replaces the density grid's.
-  if (input.parcelTable.empty() && cellsWithoutParcel > 0)
-    result.warnings.push_back(peopleText(densityWithoutParcel) + " of the density grid lie on " +
-                              std::to_string(cellsWithoutParcel) +
-                              (cellsWithoutParcel == 1 ? " cell" : " cells") +
+  if (!input.hasParcelTable && input.cellsWithoutParcel > 0)
+    result.warnings.push_back(peopleText(input.densityWithoutParcel) + " of the density grid lie on " +
+                              std::to_string(input.cellsWithoutParcel) +
+                              (input.cellsWithoutParcel == 1 ? " cell" : " cells") +
                               " without a parcel (id 0) and reach no parcel of the parcels layer");
   double inBlocks = 0, unmatched = 0;
   const std::vector<int>& vectorBlockOfSim = result.city.blocks.matching.vectorBlockOfSim;
@@ -128,9 +128,14 @@ bool keepsAllRoads(RoadRemovals removals, const VectorizeInput& input) {
   return removals == RoadRemovals::None || (removals == RoadRemovals::Auto && input.roadsFromMappedStreets);
 }
 
-VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& options,
-                          const Progress& progress) {
+namespace {
+
+/// The pipeline; `release`, when given, is `input` itself, whose density and parcel grids and parcel
+/// table go once A5 has read them.
+VectorizeResult runPipeline(const VectorizeInput& input, VectorizeInput* release,
+                            const VectorizeOptions& options, const Progress& progress) {
   validate(input);
+  const InputPopulation population = inputPopulation(input);
   VectorizeResult result;
   result.cells = input.landUse;
   RoadGraph& graph = result.roads;
@@ -140,6 +145,8 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
   // take the first 30% of the progress range when stages C-E follow.
   const Progress roadProgress = options.roadsOnly ? progress : subProgress(progress, 0.0, 0.3);
   double done = 0;
+  // Set by a stage that releases the graph before it ends (F): the counts it had when released.
+  std::optional<std::pair<std::size_t, std::size_t>> releasedGraphCounts;
   auto run = [&](const std::string& id, const std::string& name, double weight, bool graphStage,
                  const std::function<std::string(const Progress&)>& body) {
     const Progress sub = subProgress(roadProgress, done, std::min(1.0, done + weight));
@@ -152,8 +159,8 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
     report.summary = body(sub);
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     report.peakMemoryKb = peakMemoryKb();
-    report.nodes = graph.aliveCount();
-    report.links = graph.linkCount();
+    report.nodes = releasedGraphCounts ? releasedGraphCounts->first : graph.aliveCount();
+    report.links = releasedGraphCounts ? releasedGraphCounts->second : graph.linkCount();
     result.stages.push_back(report);
     if (graphStage && options.keepStageGraphs) result.stageGraphs.emplace_back(id + " " + name, graph);
     done = std::min(1.0, done + weight);
@@ -208,6 +215,14 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
     result.parcels = std::move(pl.parcels);
     if (pl.unattached > 0)
       result.warnings.push_back(unattachedParcelsWarning(pl, options.parcelLoading.majorityBlock));
+    // Nothing after A5 reads the block index per cell (4 bytes a cell), nor, when the caller lets
+    // them go, the density and parcel grids (4 bytes a cell each) and the parcel table.
+    result.blockOf = Grid<std::int32_t>();
+    if (release) {
+      release->density = Grid<float>();
+      release->parcelIds = Grid<std::int32_t>();
+      std::vector<ParcelRecord>().swap(release->parcelTable);
+    }
     return counts(result.parcels.size(), " parcels, ", pl.unattached, " unattached, ", pl.derivedFromRaster,
                   " derived from the rasters");
   });
@@ -285,16 +300,22 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
       noded += nodeCrossingsAndContractTinyLinks(graph);
     }
     reportProgress(p, 0.5, "road output");
-    // The simplified network and, when it is simplified, the exact one, side by side.
+    // The simplified network and, when it is simplified, the exact one, side by side: one walk of the
+    // graph for both (its planar graph is gone before the simplifier builds its index).
     const bool simplified = options.outputSimplification > 0;
+    result.network = buildRoadNetwork(graph, 0.0);
+    // Nothing reads the graph after this walk: it goes before the simplifier builds its index (about a
+    // hundred bytes a node), unless the caller keeps it.
+    if (!options.keepRoadGraph) {
+      releasedGraphCounts.emplace(graph.aliveCount(), graph.linkCount());
+      graph = RoadGraph();
+      releaseFreedMemory();
+    }
     RoadNetwork exact;
-    runParallel(workerCount(options.city.parcels.threads), simplified ? 2 : 1,
-                [&](std::size_t k, std::size_t) {
-                  if (k == 0)
-                    result.network = buildRoadNetwork(graph, options.outputSimplification);
-                  else
-                    exact = buildRoadNetwork(graph, 0.0);
-                });
+    if (simplified) {
+      exact = result.network;
+      simplifyRoadNetwork(result.network, options.outputSimplification);
+    }
     std::size_t restored = 0, uncovering = 0;
     if (simplified) {
       uncovering = restoreUncoveringSegments(result.network, exact, input.landUse, result.cells,
@@ -311,6 +332,7 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
                   " simplified less (uncovering a road cell), ", curves.segments, " drawn with curves (",
                   curves.points, " spline points), ", curves.restored, " kept as polylines");
   });
+  releaseFreedMemory();
   if (!options.roadsOnly) {
     const auto t0 = std::chrono::steady_clock::now();
     resetPeakMemory();
@@ -327,17 +349,30 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
     report.peakMemoryKb = peakMemoryKb();
     std::size_t parcelCount = 0;
     for (const auto& b : result.city.parcels.blocks) parcelCount += b.parcels.size();
-    report.summary = counts(result.city.blocks.blocks.features.size(), " blocks, ", parcelCount, " parcels, ",
+    report.summary = counts(result.city.layers.at(1).features.size(), " blocks, ", parcelCount, " parcels, ",
                             result.city.blocks.stats.failsafeUses, " failsafe matches (",
                             result.city.blocks.stats.failsafeWithParcels, " with parcels), ",
                             result.city.blocks.stats.overlapUses, " by cell overlap, ",
                             result.city.blocks.stats.underPavement, " left under pavement");
     result.stages.push_back(report);
-    for (const Layer& l : result.city.layers) result.layers.push_back(l);
-    populationWarnings(input, result);
+    for (Layer& l : result.city.layers) result.layers.push_back(std::move(l));
+    result.city.layers.clear();
+    populationWarnings(population, result);
   }
   reportProgress(progress, 1.0, "done");
   return result;
+}
+
+}  // namespace
+
+VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& options,
+                          const Progress& progress) {
+  return runPipeline(input, nullptr, options, progress);
+}
+
+VectorizeResult vectorizeReleasingInput(VectorizeInput& input, const VectorizeOptions& options,
+                                        const Progress& progress) {
+  return runPipeline(input, &input, options, progress);
 }
 
 }  // namespace urbanvec::vectorize

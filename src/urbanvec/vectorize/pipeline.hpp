@@ -85,6 +85,9 @@ struct VectorizeOptions {
   bool roadsOnly = false;
   /// Keep a copy of the road graph after every graph stage (for -debug-stages).
   bool keepStageGraphs = false;
+  /// Keep VectorizeResult::roads, the road graph, after F; false releases it once the road network is
+  /// built (it is not an output, and at city scale it holds about a hundred bytes a node).
+  bool keepRoadGraph = false;
 };
 
 /// What one stage did and cost.
@@ -92,8 +95,9 @@ struct StageReport {
   std::string id;    ///< "A4", "B1" ...
   std::string name;  ///< "road graph", "intersection straightening" ...
   double seconds = 0;
-  long peakMemoryKb = -1;  ///< peak resident memory during the stage (Linux), -1 when unknown
-  std::size_t nodes = 0;   ///< road graph nodes after the stage
+  long peakMemoryKb =
+      -1;                 ///< peak resident memory during the stage (Linux, core/memory.hpp), -1 when unknown
+  std::size_t nodes = 0;  ///< road graph nodes after the stage
   std::size_t links = 0;
   std::string summary;  ///< counts the stage reports, one line
 };
@@ -103,10 +107,13 @@ struct VectorizeResult {
   bool roadsKept = false;
   /// Land-use codes after cleaning (kRemovedRoad where A3/A4.3 removed road).
   Grid<std::uint8_t> cells;
-  std::vector<SimBlock> blocks;    ///< A2 simulated blocks, with their parcels (A5)
-  Grid<std::int32_t> blockOf;      ///< block index per patch, -1 where none
+  std::vector<SimBlock> blocks;  ///< A2 simulated blocks, with their parcels (A5)
+  /// Block index per patch, -1 where none (A2); released (left 0 x 0) after A5, the last stage reading it.
+  Grid<std::int32_t> blockOf;
   std::vector<SimParcel> parcels;  ///< A5 simulated parcels
-  RoadGraph roads;                 ///< the road graph after B6 (and planarization), internal frame (pw)
+  /// The road graph after B7 (and planarization), internal frame (pw); empty unless
+  /// VectorizeOptions::keepRoadGraph.
+  RoadGraph roads;
   /// Its segments and segment-end nodes (the part 1 -> part 2 interface), output simplification applied.
   RoadNetwork network;
   std::vector<StageReport> stages;
@@ -118,7 +125,7 @@ struct VectorizeResult {
   /// Links of the dead ends B5 removed (internal frame), for the same check.
   std::vector<std::array<Vec2, 2>> deadEndRemovedLinks;
   std::vector<std::string> warnings;
-  /// Stages C-E (empty when roadsOnly).
+  /// Stages C-E (empty when roadsOnly); its layers are moved into `layers` (city.layers is left empty).
   CityResult city;
   /// Output layers in world coordinates: roads, road_nodes, then (unless roadsOnly) pavement, blocks,
   /// water, spines, parcels, vectorize_report.
@@ -132,5 +139,11 @@ bool keepsAllRoads(RoadRemovals removals, const VectorizeInput& input);
 /// the progress callback asks to stop.
 VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& options,
                           const Progress& progress = {});
+
+/// The same run, which also frees `input`'s density and parcel grids and its parcel table once A5 has
+/// read them (8 bytes a cell: on a city-sized grid more than the output). The rest of `input` (spec,
+/// landUse, openRegions) stays for the caller.
+VectorizeResult vectorizeReleasingInput(VectorizeInput& input, const VectorizeOptions& options,
+                                        const Progress& progress = {});
 
 }  // namespace urbanvec::vectorize

@@ -11,6 +11,7 @@
 
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/core/geos.hpp"
+#include "urbanvec/core/memory.hpp"
 
 namespace urbanvec::vectorize {
 
@@ -97,7 +98,6 @@ BlocksResult vectorizeBlocks(const RoadNetwork& network, const SimulatedCity& ci
     throw invalidInput("The land-use grid is " + std::to_string(city.grid.width) + " x " +
                        std::to_string(city.grid.height) + " cells but the grid it belongs to is " +
                        std::to_string(grid.width) + " x " + std::to_string(grid.height) + ".");
-  const Grid<int> blockOfCell = simulatedBlockOfCells(city);
   BlocksResult result;
   BlocksStats& stats = result.stats;
   stats.simulatedBlocks = static_cast<int>(city.blocks.size());
@@ -119,6 +119,10 @@ BlocksResult vectorizeBlocks(const RoadNetwork& network, const SimulatedCity& ci
   result.perimeterCells = outline.perimeter;
   stats.absorbedSlivers =
       absorbSlivers(roads.pieces, outline.slivers, options.outline.precisionGrid, options.outline.threads);
+  MultiPolygon().swap(outline.pavementUnion);  // not read after D1
+  releaseFreedMemory();                        // D1's overlays
+  // Only D2-D5 read the simulated block of each cell: built after D1's union, not beside it.
+  const Grid<int> blockOfCell = simulatedBlockOfCells(city);
 
   // D3 + D4: external blocks from the perimeter and the boundary lines.
   if (concurrentWater.started()) {
@@ -132,7 +136,7 @@ BlocksResult vectorizeBlocks(const RoadNetwork& network, const SimulatedCity& ci
   stats.droppedExternalFaces = external.droppedFaces;
 
   // D2: water splitting of every block.
-  std::vector<Polygon> blocks = outline.internalBlocks;
+  std::vector<Polygon> blocks = std::move(outline.internalBlocks);
   std::vector<bool> internal(blocks.size(), true);
   for (Polygon& p : external.blocks) {
     blocks.push_back(std::move(p));

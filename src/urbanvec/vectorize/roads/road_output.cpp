@@ -4,11 +4,8 @@
 #include <cstdint>
 #include <tuple>
 
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
-
 #include "urbanvec/core/geos.hpp"
+#include "urbanvec/core/memory.hpp"
 #include "urbanvec/core/planar_graph.hpp"
 #include "urbanvec/vectorize/roads/road_graph_build.hpp"
 
@@ -50,7 +47,11 @@ const char* className(NodeType t) {
 
 }  // namespace
 
-RoadNetwork buildRoadNetwork(const RoadGraph& g, double simplifyTolerance) {
+namespace {
+
+/// buildRoadNetwork's segments and ends before the simplification (its planar graph and walks are
+/// gone when this returns, so they do not stay beside the simplifier's index).
+RoadNetwork networkChains(const RoadGraph& g) {
   RoadNetwork net;
   const size_t n = g.nodes.size();
   std::vector<std::int32_t> outId(n, -1);
@@ -125,21 +126,26 @@ RoadNetwork buildRoadNetwork(const RoadGraph& g, double simplifyTolerance) {
     seg.toNode = outId[w.nodes.back()];
     net.segments.push_back(std::move(seg));
   }
-  if (simplifyTolerance > 0 && !net.segments.empty()) {
-    std::vector<LineString> lines;
-    lines.reserve(net.segments.size());
-    for (const NetworkSegment& s : net.segments) lines.push_back(s.points);
-    lines = simplifyTogether(lines, simplifyTolerance);
-    for (size_t k = 0; k < lines.size(); ++k) net.segments[k].points = std::move(lines[k]);
-    releaseFreedMemory();  // the simplifier's index: ~400 bytes per road vertex
-  }
   return net;
 }
 
-void releaseFreedMemory() {
-#if defined(__GLIBC__)
-  malloc_trim(0);
-#endif
+}  // namespace
+
+void simplifyRoadNetwork(RoadNetwork& net, double tolerance) {
+  if (!(tolerance > 0) || net.segments.empty()) return;
+  std::vector<LineString> lines;
+  lines.reserve(net.segments.size());
+  // Moved, not copied: simplifyTogether returns either the simplified lines or these.
+  for (NetworkSegment& s : net.segments) lines.push_back(std::move(s.points));
+  lines = simplifyTogether(lines, tolerance);
+  for (size_t k = 0; k < lines.size(); ++k) net.segments[k].points = std::move(lines[k]);
+  releaseFreedMemory();  // the simplifier's index: ~400 bytes per road vertex
+}
+
+RoadNetwork buildRoadNetwork(const RoadGraph& g, double simplifyTolerance) {
+  RoadNetwork net = networkChains(g);
+  simplifyRoadNetwork(net, simplifyTolerance);
+  return net;
 }
 
 std::vector<Layer> roadLayers(const RoadNetwork& net, const GridSpec& spec) {

@@ -25,10 +25,9 @@ std::vector<LineString> simplifyTogether(const std::vector<LineString>& lines, d
 /// with GEOS's topology-preserving simplifier, which keeps their end nodes and adds no crossings.
 RoadNetwork buildRoadNetwork(const RoadGraph& graph, double simplifyTolerance = 0.0);
 
-/// Hands the heap pages that freed memory left behind back to the system (glibc's malloc_trim; a no-op
-/// elsewhere). The GEOS stages free hundreds of MB of small objects at city scale; without this they
-/// stay resident and the next stage's allocations pile on top of them.
-void releaseFreedMemory();
+/// The simplification of buildRoadNetwork, on a network built with tolerance 0: buildRoadNetwork(g, t)
+/// is buildRoadNetwork(g, 0) simplified with tolerance t. Does nothing for t <= 0.
+void simplifyRoadNetwork(RoadNetwork& network, double tolerance);
 
 /// `roads` (road_id, road_class, from_node, to_node, length in CRS units) and `road_nodes` (node_id,
 /// kind, degree) in world coordinates. Ids are 1-based indices into the network's vectors.
