@@ -170,6 +170,16 @@ PointKey keyOf(const Vec2& p) {
   return {bitsOf(p.x), bitsOf(p.y)};
 }
 
+/// Signed area of a closed ring about its first vertex: the orientation of rings a few grid steps wide
+/// far from the origin, where the shoelace sum of absolute coordinates loses it to rounding.
+double localSignedArea(const Ring& ring) {
+  if (ring.size() < 4) return 0.0;
+  double twice = 0.0;
+  const Vec2 o = ring.front();
+  for (size_t i = 1; i + 2 < ring.size(); ++i) twice += cross(ring[i] - o, ring[i + 1] - o);
+  return 0.5 * twice;
+}
+
 /// Angle from `from` to `to`, counter-clockwise, in (0, 2 pi].
 double ccwAngle(const Vec2& from, const Vec2& to) {
   double a = std::atan2(cross(from, to), dot(from, to));
@@ -194,7 +204,7 @@ bool coverageUnion(const std::vector<const Polygon*>& polygons, MultiPolygon& ou
   std::vector<char> alive;
   std::unordered_map<EdgeKey, size_t, EdgeKeyHash> open;
   auto addRing = [&](const Ring& ring, bool outer) {
-    const bool reverse = (signedArea(ring) > 0.0) == outer;
+    const bool reverse = (localSignedArea(ring) > 0.0) == outer;
     for (size_t i = 0; i + 1 < ring.size(); ++i) {
       Vec2 a = ring[i], b = ring[i + 1];
       if (reverse) std::swap(a, b);
@@ -274,13 +284,21 @@ bool coverageUnion(const std::vector<const Polygon*>& polygons, MultiPolygon& ou
       for (size_t j = at->second + 1; j < stack.size(); ++j)
         seen.erase(EdgeKey{keyOf(stack[j]), keyOf(stack[j])});
       stack.resize(at->second + 1);
-      (signedArea(loop) < 0.0 ? shells : holes).push_back(std::move(loop));
+      (localSignedArea(loop) < 0.0 ? shells : holes).push_back(std::move(loop));
     }
     stack.push_back(stack.front());
-    (signedArea(stack) < 0.0 ? shells : holes).push_back(std::move(stack));
+    (localSignedArea(stack) < 0.0 ? shells : holes).push_back(std::move(stack));
   }
-  // Each hole goes to the smallest shell around one of its edge midpoints.
+  // Each hole goes to the smallest shell around one of its edge midpoints (shells tested smallest
+  // first). A shell's crossing test visits only the edges of the horizontal strip that holds the point:
+  // the whole network's outline, around every block, has most of the vertices.
+  struct Strips {
+    double y0 = 0.0, height = 1.0;
+    std::vector<std::vector<std::uint32_t>> edges;  // per strip, the edges whose y range meets it
+  };
   std::vector<std::array<double, 4>> box(shells.size());
+  std::vector<double> shellArea(shells.size());
+  std::vector<Strips> strips(shells.size());
   for (size_t s = 0; s < shells.size(); ++s) {
     box[s] = {1e300, 1e300, -1e300, -1e300};
     for (const Vec2& p : shells[s]) {
@@ -289,26 +307,56 @@ bool coverageUnion(const std::vector<const Polygon*>& polygons, MultiPolygon& ou
       box[s][2] = std::max(box[s][2], p.x);
       box[s][3] = std::max(box[s][3], p.y);
     }
+    shellArea[s] = -localSignedArea(shells[s]);
+    const Ring& r = shells[s];
+    const size_t count = std::max<size_t>(1, static_cast<size_t>(std::sqrt(static_cast<double>(r.size()))));
+    Strips& st = strips[s];
+    st.y0 = box[s][1];
+    st.height = std::max((box[s][3] - box[s][1]) / static_cast<double>(count), 1e-300);
+    st.edges.resize(count);
+    auto stripOf = [&](double y) {
+      return std::min(count - 1, static_cast<size_t>(std::max(0.0, (y - st.y0) / st.height)));
+    };
+    for (size_t e = 0; e + 1 < r.size(); ++e) {
+      const size_t lo = stripOf(std::min(r[e].y, r[e + 1].y)), hi = stripOf(std::max(r[e].y, r[e + 1].y));
+      for (size_t k = lo; k <= hi; ++k) st.edges[k].push_back(static_cast<std::uint32_t>(e));
+    }
   }
+  auto shellContains = [&](size_t s, const Vec2& p) {
+    const Strips& st = strips[s];
+    const Ring& r = shells[s];
+    const size_t k =
+        std::min(st.edges.size() - 1, static_cast<size_t>(std::max(0.0, (p.y - st.y0) / st.height)));
+    bool inside = false;
+    for (std::uint32_t e : st.edges[k]) {
+      const Vec2& a = r[e];
+      const Vec2& b = r[e + 1];
+      if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y)) inside = !inside;
+    }
+    return inside;
+  };
   std::vector<size_t> byX(shells.size());
   for (size_t s = 0; s < shells.size(); ++s) byX[s] = s;
   std::sort(byX.begin(), byX.end(),
             [&](size_t a, size_t b) { return box[a][0] < box[b][0] || (box[a][0] == box[b][0] && a < b); });
   for (size_t s = 0; s < shells.size(); ++s) out.push_back(Polygon{shells[s], {}});
+  std::vector<size_t> candidates;
   for (Ring& h : holes) {
     const Vec2 probe = (h[0] + h[1]) * 0.5;
-    size_t best = SIZE_MAX;
-    double bestArea = 0.0;
+    candidates.clear();
     for (size_t s : byX) {
       if (box[s][0] > probe.x) break;
-      if (probe.x > box[s][2] || probe.y < box[s][1] || probe.y > box[s][3]) continue;
-      if (!ringContains(shells[s], probe)) continue;
-      const double a = -signedArea(shells[s]);
-      if (best == SIZE_MAX || a < bestArea) {
-        best = s;
-        bestArea = a;
-      }
+      if (probe.x <= box[s][2] && probe.y >= box[s][1] && probe.y <= box[s][3]) candidates.push_back(s);
     }
+    std::sort(candidates.begin(), candidates.end(), [&](size_t a, size_t b) {
+      return shellArea[a] < shellArea[b] || (shellArea[a] == shellArea[b] && a < b);
+    });
+    size_t best = SIZE_MAX;
+    for (size_t s : candidates)
+      if (shellContains(s, probe)) {
+        best = s;
+        break;
+      }
     if (best == SIZE_MAX) return false;
     out[best].holes.push_back(std::move(h));
   }

@@ -160,3 +160,54 @@ TEST(PavementCoverage, WalkSplitsRingsWhereTheUnionTouchesItself) {
   pieces.push_back(pieces.front());
   EXPECT_FALSE(coverageUnion(pieces, walked));
 }
+
+TEST(PavementCoverage, WalkGivesAHoleToTheSmallestShellAroundIt) {
+  // A frame of unit squares (0..7 around a 5 x 5 hole) and inside its hole a smaller frame (2..5 around
+  // a one-cell hole): the inner hole belongs to the inner frame, not to the outer one around it.
+  std::vector<PavementPiece> pieces;
+  auto frame = [&](int lo, int hi) {
+    for (int x = lo; x < hi; ++x)
+      for (int y = lo; y < hi; ++y) {
+        if (x > lo && x < hi - 1 && y > lo && y < hi - 1) continue;
+        PavementPiece p;
+        Polygon sq = box(x, y, x + 1, y + 1);
+        orientClockwise(sq);
+        p.shape.push_back(sq);
+        pieces.push_back(p);
+      }
+  };
+  frame(2, 5);  // the inner frame first, so its ring is not simply the last shell
+  frame(0, 7);
+  MultiPolygon walked;
+  ASSERT_TRUE(coverageUnion(pieces, walked));
+  ASSERT_EQ(walked.size(), 2u);
+  for (const Polygon& p : walked) {
+    ASSERT_EQ(p.holes.size(), 1u);
+    const double shell = -signedArea(p.outer), hole = signedArea(p.holes[0]);
+    EXPECT_NEAR(hole, shell > 20.0 ? 25.0 : 1.0, 1e-12);
+  }
+  geos::Context ctx;
+  geos::GeomPtr mine = ctx.multiPolygon(walked);
+  EXPECT_EQ(GEOSisValid_r(ctx.handle(), mine.get()), 1);
+  EXPECT_NEAR(area(walked), 24.0 + 8.0, 1e-12);
+}
+
+TEST(PavementCoverage, WalkOrientsRingsAFewGridStepsWideFarFromTheOrigin) {
+  // Faces of one grid step, 4000 cells out (a 4096² grid's far corner): the shoelace sum of absolute
+  // coordinates rounds away their area, so the walk takes each ring's orientation about its first vertex.
+  const double g = 1e-6;
+  std::vector<Polygon> faces;
+  const double y = 3999.654321, top = y + g;
+  for (int k = 0; k < 8; ++k) {
+    const double x = 4000.123456 + k * g, right = 4000.123456 + (k + 1) * g;
+    faces.push_back(Polygon{{{x, y}, {right, y}, {right, top}, {x, y}}, {}});  // counter-clockwise
+    faces.push_back(Polygon{{{x, y}, {x, top}, {right, top}, {x, y}}, {}});    // clockwise
+  }
+  std::vector<const Polygon*> parts;
+  for (const Polygon& f : faces) parts.push_back(&f);
+  MultiPolygon walked;
+  ASSERT_TRUE(coverageUnion(parts, walked));
+  ASSERT_EQ(walked.size(), 1u);
+  EXPECT_TRUE(walked[0].holes.empty());
+  EXPECT_EQ(walked[0].outer.size(), 19u);  // 8 steps along each long side, one along each short side, closed
+}
