@@ -31,6 +31,9 @@
 #                                                        bubenec 0.2401/0.2492/0.2983/0.2541/0.2751, monaco 0.1181/0.0996/0.1056/0.1048/0.0985)
 #                                                       (issue 20, B7 arms fitted beyond the window, another re-draw: bubenec band recentred on 0.2013;
 #                                                        now 0.2061, monaco 0.1176)
+#                                                       (issue 21 round 6, pavement as a coverage, a re-draw: monaco band recentred on 0.0959;
+#                                                        seeds 1-5 monaco 0.0959/0.0950/0.0997/0.0929/0.0940 (main 0.0998/0.0979/0.0964/0.0928/0.0933),
+#                                                        bubenec 0.1893/0.2751/0.2489/0.2425/0.2232 (main 0.1907/0.2240/0.2701/0.2548/0.3192))
 #   land-use L1 error (monaco, every road kept)  0.1103
 #   mean parcel cost per block     78.86      75.80    (vectorize_report.cost; bubenec 68.78 before issue 20's B7 arms fitted beyond the window)
 #   road p95 truth->result cells    0.993      0.512

@@ -79,6 +79,26 @@ std::set<std::pair<long, long>> vertexSet(const Ring& ring) {
   return out;
 }
 
+/// The closed ring without the vertices that lie on the straight line between their neighbours: stage
+/// C's pieces carry the vertices of the pieces they meet (a coverage, issue 21), the shapes' corners
+/// are the rest.
+Ring withoutStraightVertices(const Ring& ring) {
+  std::vector<Vec2> open(ring.begin(), ring.end() - 1);
+  Ring out;
+  for (size_t i = 0; i < open.size(); ++i) {
+    const Vec2& a = open[(i + open.size() - 1) % open.size()];
+    const Vec2& b = open[i];
+    const Vec2& c = open[(i + 1) % open.size()];
+    if (std::fabs(cross(b - a, c - b)) > 1e-5 * length(b - a) * length(c - b)) out.push_back(b);
+  }
+  if (!out.empty()) out.push_back(out.front());
+  return out;
+}
+
+std::set<std::pair<long, long>> cornerSet(const Ring& ring) {
+  return vertexSet(withoutStraightVertices(ring));
+}
+
 double unionArea(const std::vector<PavementPiece>& pieces, const Polygon* clip = nullptr) {
   geos::Context ctx;
   std::vector<geos::GeomPtr> parts;

@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <unordered_map>
 
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/core/geos.hpp"
@@ -129,6 +132,237 @@ int absorbSlivers(std::vector<PavementPiece>& pavement, const MultiPolygon& sliv
   return absorbed;
 }
 
+bool ringContains(const Ring& ring, const Vec2& p) {
+  bool inside = false;
+  for (size_t i = 0, n = ring.size(); i + 1 < n; ++i) {
+    const Vec2& a = ring[i];
+    const Vec2& b = ring[i + 1];
+    if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y)) inside = !inside;
+  }
+  return inside;
+}
+
+namespace {
+
+std::uint64_t bitsOf(double v) {
+  std::uint64_t u = 0;
+  v += 0.0;  // -0 and +0 are one point
+  std::memcpy(&u, &v, sizeof u);
+  return u;
+}
+
+struct PointKey {
+  std::uint64_t x = 0, y = 0;
+  bool operator==(const PointKey& o) const { return x == o.x && y == o.y; }
+};
+struct EdgeKey {
+  PointKey a, b;
+  bool operator==(const EdgeKey& o) const { return a == o.a && b == o.b; }
+};
+struct EdgeKeyHash {
+  size_t operator()(const EdgeKey& k) const {
+    std::uint64_t h = k.a.x * 0x9E3779B97F4A7C15ull;
+    for (std::uint64_t v : {k.a.y, k.b.x, k.b.y}) h = (h ^ (h >> 29) ^ v) * 0xBF58476D1CE4E5B9ull;
+    return static_cast<size_t>(h ^ (h >> 32));
+  }
+};
+PointKey keyOf(const Vec2& p) {
+  return {bitsOf(p.x), bitsOf(p.y)};
+}
+
+/// Signed area of a closed ring about its first vertex: the orientation of rings a few grid steps wide
+/// far from the origin, where the shoelace sum of absolute coordinates loses it to rounding.
+double localSignedArea(const Ring& ring) {
+  if (ring.size() < 4) return 0.0;
+  double twice = 0.0;
+  const Vec2 o = ring.front();
+  for (size_t i = 1; i + 2 < ring.size(); ++i) twice += cross(ring[i] - o, ring[i + 1] - o);
+  return 0.5 * twice;
+}
+
+/// Angle from `from` to `to`, counter-clockwise, in (0, 2 pi].
+double ccwAngle(const Vec2& from, const Vec2& to) {
+  double a = std::atan2(cross(from, to), dot(from, to));
+  if (a <= 0.0) a += 2.0 * 3.14159265358979323846;
+  return a;
+}
+
+}  // namespace
+
+bool coverageUnion(const std::vector<PavementPiece>& pieces, MultiPolygon& out) {
+  std::vector<const Polygon*> polygons;
+  for (const PavementPiece& piece : pieces)
+    for (const Polygon& p : piece.shape) polygons.push_back(&p);
+  return coverageUnion(polygons, out);
+}
+
+bool coverageUnion(const std::vector<const Polygon*>& polygons, MultiPolygon& out) {
+  out.clear();
+  // Every ring edge, directed with the piece on its right (outer rings clockwise, holes
+  // counter-clockwise); an edge met once in each direction lies between two pieces and cancels.
+  std::vector<std::pair<Vec2, Vec2>> edges;
+  std::vector<char> alive;
+  std::unordered_map<EdgeKey, size_t, EdgeKeyHash> open;
+  auto addRing = [&](const Ring& ring, bool outer) {
+    const bool reverse = (localSignedArea(ring) > 0.0) == outer;
+    for (size_t i = 0; i + 1 < ring.size(); ++i) {
+      Vec2 a = ring[i], b = ring[i + 1];
+      if (reverse) std::swap(a, b);
+      if (a == b) continue;
+      const auto back = open.find({keyOf(b), keyOf(a)});
+      if (back != open.end()) {
+        alive[back->second] = 0;
+        open.erase(back);
+        continue;
+      }
+      if (!open.emplace(EdgeKey{keyOf(a), keyOf(b)}, edges.size()).second) return false;  // overlap
+      edges.emplace_back(a, b);
+      alive.push_back(1);
+    }
+    return true;
+  };
+  for (const Polygon* p : polygons) {
+    if (!addRing(p->outer, true)) return false;
+    for (const Ring& h : p->holes)
+      if (!addRing(h, false)) return false;
+  }
+  open = {};
+  // The edges left over, by start point, for the walk.
+  std::vector<size_t> left;
+  for (size_t e = 0; e < edges.size(); ++e)
+    if (alive[e]) left.push_back(e);
+  auto lexLess = [](const Vec2& p, const Vec2& q) { return p.x < q.x || (p.x == q.x && p.y < q.y); };
+  std::vector<size_t> byStart = left;
+  std::sort(byStart.begin(), byStart.end(), [&](size_t e, size_t f) {
+    return lexLess(edges[e].first, edges[f].first) || (edges[e].first == edges[f].first && e < f);
+  });
+  // Each incoming edge continues with the first outgoing edge counter-clockwise from its reverse:
+  // that keeps the pavement on the right and splits the boundary at points where it touches itself.
+  auto next = [&](size_t in) -> size_t {
+    const Vec2& v = edges[in].second;
+    auto lo = std::lower_bound(byStart.begin(), byStart.end(), v,
+                               [&](size_t e, const Vec2& p) { return lexLess(edges[e].first, p); });
+    size_t best = SIZE_MAX;
+    double bestAngle = 0.0;
+    const Vec2 back = edges[in].first - v;
+    for (auto it = lo; it != byStart.end() && edges[*it].first == v; ++it) {
+      const double a = ccwAngle(back, edges[*it].second - v);
+      if (best == SIZE_MAX || a < bestAngle) {
+        best = *it;
+        bestAngle = a;
+      }
+    }
+    return best;
+  };
+  std::vector<char> used(edges.size(), 0);
+  std::vector<Ring> shells, holes;
+  for (size_t start : left) {
+    if (used[start]) continue;
+    Ring ring{edges[start].first};
+    for (size_t e = start;;) {
+      used[e] = 1;
+      ring.push_back(edges[e].second);
+      e = next(e);
+      if (e == SIZE_MAX || (used[e] && e != start)) return false;  // not closed: not a coverage
+      if (e == start) break;
+    }
+    // A ring through one point twice (the union touching itself there) is split into simple rings
+    // at that point; clockwise ones bound pavement (shells), counter-clockwise ones holes.
+    std::vector<Vec2> stack;
+    std::unordered_map<EdgeKey, size_t, EdgeKeyHash> seen;  // point (as a degenerate edge) -> depth
+    for (size_t i = 0; i + 1 < ring.size(); ++i) {
+      const Vec2& p = ring[i];
+      const PointKey k = keyOf(p);
+      const auto at = seen.find({k, k});
+      if (at == seen.end()) {
+        seen.emplace(EdgeKey{k, k}, stack.size());
+        stack.push_back(p);
+        continue;
+      }
+      Ring loop(stack.begin() + static_cast<std::ptrdiff_t>(at->second), stack.end());
+      loop.push_back(p);
+      for (size_t j = at->second + 1; j < stack.size(); ++j)
+        seen.erase(EdgeKey{keyOf(stack[j]), keyOf(stack[j])});
+      stack.resize(at->second + 1);
+      (localSignedArea(loop) < 0.0 ? shells : holes).push_back(std::move(loop));
+    }
+    stack.push_back(stack.front());
+    (localSignedArea(stack) < 0.0 ? shells : holes).push_back(std::move(stack));
+  }
+  // Each hole goes to the smallest shell around one of its edge midpoints (shells tested smallest
+  // first). A shell's crossing test visits only the edges of the horizontal strip that holds the point:
+  // the whole network's outline, around every block, has most of the vertices.
+  struct Strips {
+    double y0 = 0.0, height = 1.0;
+    std::vector<std::vector<std::uint32_t>> edges;  // per strip, the edges whose y range meets it
+  };
+  std::vector<std::array<double, 4>> box(shells.size());
+  std::vector<double> shellArea(shells.size());
+  std::vector<Strips> strips(shells.size());
+  for (size_t s = 0; s < shells.size(); ++s) {
+    box[s] = {1e300, 1e300, -1e300, -1e300};
+    for (const Vec2& p : shells[s]) {
+      box[s][0] = std::min(box[s][0], p.x);
+      box[s][1] = std::min(box[s][1], p.y);
+      box[s][2] = std::max(box[s][2], p.x);
+      box[s][3] = std::max(box[s][3], p.y);
+    }
+    shellArea[s] = -localSignedArea(shells[s]);
+    const Ring& r = shells[s];
+    const size_t count = std::max<size_t>(1, static_cast<size_t>(std::sqrt(static_cast<double>(r.size()))));
+    Strips& st = strips[s];
+    st.y0 = box[s][1];
+    st.height = std::max((box[s][3] - box[s][1]) / static_cast<double>(count), 1e-300);
+    st.edges.resize(count);
+    auto stripOf = [&](double y) {
+      return std::min(count - 1, static_cast<size_t>(std::max(0.0, (y - st.y0) / st.height)));
+    };
+    for (size_t e = 0; e + 1 < r.size(); ++e) {
+      const size_t lo = stripOf(std::min(r[e].y, r[e + 1].y)), hi = stripOf(std::max(r[e].y, r[e + 1].y));
+      for (size_t k = lo; k <= hi; ++k) st.edges[k].push_back(static_cast<std::uint32_t>(e));
+    }
+  }
+  auto shellContains = [&](size_t s, const Vec2& p) {
+    const Strips& st = strips[s];
+    const Ring& r = shells[s];
+    const size_t k =
+        std::min(st.edges.size() - 1, static_cast<size_t>(std::max(0.0, (p.y - st.y0) / st.height)));
+    bool inside = false;
+    for (std::uint32_t e : st.edges[k]) {
+      const Vec2& a = r[e];
+      const Vec2& b = r[e + 1];
+      if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y)) inside = !inside;
+    }
+    return inside;
+  };
+  std::vector<size_t> byX(shells.size());
+  for (size_t s = 0; s < shells.size(); ++s) byX[s] = s;
+  std::sort(byX.begin(), byX.end(),
+            [&](size_t a, size_t b) { return box[a][0] < box[b][0] || (box[a][0] == box[b][0] && a < b); });
+  for (size_t s = 0; s < shells.size(); ++s) out.push_back(Polygon{shells[s], {}});
+  std::vector<size_t> candidates;
+  for (Ring& h : holes) {
+    const Vec2 probe = (h[0] + h[1]) * 0.5;
+    candidates.clear();
+    for (size_t s : byX) {
+      if (box[s][0] > probe.x) break;
+      if (probe.x <= box[s][2] && probe.y >= box[s][1] && probe.y <= box[s][3]) candidates.push_back(s);
+    }
+    std::sort(candidates.begin(), candidates.end(), [&](size_t a, size_t b) {
+      return shellArea[a] < shellArea[b] || (shellArea[a] == shellArea[b] && a < b);
+    });
+    size_t best = SIZE_MAX;
+    for (size_t s : candidates)
+      if (shellContains(s, probe)) {
+        best = s;
+        break;
+      }
+    if (best == SIZE_MAX) return false;
+    out[best].holes.push_back(std::move(h));
+  }
+  return true;
+}
+
 BlockOutline outlineBlocks(const std::vector<PavementPiece>& pavement, const BlockOutlineOptions& options,
                            const Progress& progress) {
   if (!(options.precisionGrid > 0.0))
@@ -137,12 +371,16 @@ BlockOutline outlineBlocks(const std::vector<PavementPiece>& pavement, const Blo
   reportProgress(progress, 0.0, "block outlining");
   geos::Context ctx;
   const double grid = options.precisionGrid;
-  std::vector<geos::GeomPtr> parts;
-  for (const PavementPiece& piece : pavement) parts.push_back(ctx.multiPolygon(piece.shape));
-  const GeosWorkers workers(options.threads);
-  geos::GeomPtr all = frameAnchoredUnion(ctx, workers, std::move(parts), grid, options.unionSquare);
   BlockOutline out;
-  out.pavementUnion = ctx.toPolygons(all.get());
+  // Stage C's pieces form a coverage: their union is the walk of the edges that are not shared. The
+  // frame-anchored overlay union stays for pavement that is not one (pieces made elsewhere).
+  if (!coverageUnion(pavement, out.pavementUnion)) {
+    std::vector<geos::GeomPtr> parts;
+    for (const PavementPiece& piece : pavement) parts.push_back(ctx.multiPolygon(piece.shape));
+    const GeosWorkers workers(options.threads);
+    geos::GeomPtr all = frameAnchoredUnion(ctx, workers, std::move(parts), grid, options.unionSquare);
+    out.pavementUnion = ctx.toPolygons(all.get());
+  }
   reportProgress(progress, 0.5, "block outlining");
 
   const MultiPolygon& components = out.pavementUnion;

@@ -2,9 +2,10 @@
 // enclosed by curbs become internal blocks, the outer boundary of each road network is kept aside as
 // the perimeter, and every block gets its PCA oriented bounding box and diagonal.
 //
-// The face walk of the curb linework is done by GEOS overlay: the pavement pieces of stage C are
-// unioned on the precision grid (in a fixed grouping anchored to the frame, so that a window of the
-// raster gets the same vertices as the whole raster, issue 22), and the holes of that union are exactly the
+// The face walk of the curb linework is a walk of the pavement's boundary: stage C's pieces form a
+// polygon coverage, so their union is the chain of the edges that only one piece has (coverageUnion;
+// pavement that is not a coverage is unioned by GEOS overlay on the precision grid in a fixed grouping
+// anchored to the frame, issue 22), and the holes of that union are exactly the
 // bounded faces of the curb arrangement that contain no pavement (spec §3 D1 [INFERENCE] "a face is a block
 // face iff it does not intersect the interior of any pavement polygon"). The exterior ring of each road
 // component is its perimeter. Road networks lying inside another network's block are cut out of that block.
@@ -26,10 +27,11 @@ struct BlockOutlineOptions {
   double minBlockArea = 0.1;
   /// Overlay precision grid, in cells (see kDefaultPrecisionGrid).
   double precisionGrid = kDefaultPrecisionGrid;
-  /// Side of the squares, anchored at the frame's origin, that group the pavement pieces of the union
-  /// (frameAnchoredUnion), in cells ([INFERENCE]: a square's pieces are united one after another, so
-  /// small squares keep that short; on Monaco 2-8 cells cost what GEOS's cascaded union did, 16 cells
-  /// 1.5 x, 64 cells 6 x). Any value gives a union that does not depend on the window.
+  /// Side of the squares, anchored at the frame's origin, that group the pavement pieces of the overlay
+  /// union of pavement that is not a coverage (frameAnchoredUnion), in cells ([INFERENCE]: a square's pieces
+  /// are united one after another, so small squares keep that short; on Monaco 2-8 cells cost what GEOS's
+  /// cascaded union did, 16 cells 1.5 x, 64 cells 6 x). Any value gives a union that does not depend on the
+  /// window.
   double unionSquare = 4.0;
   /// Worker threads of the union; 0 = all cores. Does not change the output.
   int threads = 0;
@@ -49,6 +51,18 @@ struct BlockOutline {
 
 BlockOutline outlineBlocks(const std::vector<PavementPiece>& pavement, const BlockOutlineOptions& options,
                            const Progress& progress = {});
+
+/// Union of pavement pieces that form a polygon coverage (pieces meet only along edges with exactly
+/// the same vertices, as stage C makes them), by walking the edges that are not shared between two
+/// pieces: linear in the number of edges, no overlay. Outer rings clockwise, holes counter-clockwise;
+/// where the union touches itself at a point, the rings are split there. Returns false (and `out` is
+/// unusable) when the pieces are not a coverage: an edge met twice in the same direction (overlap) or
+/// a boundary that does not close.
+bool coverageUnion(const std::vector<PavementPiece>& pieces, MultiPolygon& out);
+/// The same for polygons that form a coverage.
+bool coverageUnion(const std::vector<const Polygon*>& polygons, MultiPolygon& out);
+/// Even-odd crossing test of a point against a closed ring (points on the ring: either answer).
+bool ringContains(const Ring& ring, const Vec2& p);
 
 /// Merges every sliver into the pavement piece it touches that comes first by envelope (lower-left
 /// corner, then upper-right, then area: an order that does not depend on the pieces' numbering), so

@@ -107,7 +107,7 @@ BlocksResult vectorizeBlocks(const RoadNetwork& network, const SimulatedCity& ci
   stats.convexHullFallbacks = roads.convexHullFallbacks;
 
   // The water regions depend on the land-use grid alone: with more than one thread they are traced on
-  // a second thread while D1's union of all pavement (one GEOS call, one core) runs (issue 21). Same
+  // a second thread while D1's outlining (one core) runs (issue 21). Same
   // result either way; the water stage's progress is reported once it is joined.
   MultiPolygon water;
   ConcurrentWater concurrentWater(city.grid, options.water);

@@ -183,6 +183,156 @@ bool isConvexPolygon(const std::vector<Vec2>& pts) {
   return true;
 }
 
+/// Even-odd test of `p` against every ring of `polygons`.
+bool insidePolygons(const MultiPolygon& polygons, const Vec2& p) {
+  bool inside = false;
+  for (const Polygon& poly : polygons) {
+    inside ^= ringContains(poly.outer, p);
+    for (const Ring& h : poly.holes) inside ^= ringContains(h, p);
+  }
+  return inside;
+}
+
+/// Overlap resolution as one arrangement (issue 21, round 6): the boundaries of the pieces are noded
+/// together by snap rounding on the grid, the noded linework is cut into faces, and each face goes to
+/// the first piece, in priority order, that holds its interior point. Neighbouring pieces are then made
+/// of the same noded edges, so they meet on exactly shared vertices (a polygon coverage) and D1's union
+/// of them is a walk of the unshared edges (coverageUnion), not an overlay.
+///
+/// The arrangement is built by region, in parallel, and gives the faces of the arrangement of all
+/// pieces at once: snap rounding moves a segment only onto the hot pixels (vertices and crossings,
+/// rounded to the grid) whose pixel it passes through, and splits it there. A face of piece A lies
+/// inside A, so every edge around it runs inside A (or within a pixel of it) between hot pixels there:
+/// the crossings with A's boundary, the vertices and crossings of the segments near A. Those segments
+/// belong to A's neighbours (the pieces whose envelope comes within two grid steps of A's). So a region
+/// (a square of `regionSize` cells anchored at the frame's origin, holding the pieces whose envelope
+/// starts in it) nodes its own pieces with their neighbours and keeps the faces of its own pieces;
+/// tiles, threads and the region size do not change them
+/// (PavementCoverage.ResolvingByRegionGivesThePiecesOfOneRegion).
+std::vector<PavementPiece> resolveOverlaps(const geos::Context& ctx, const GeosWorkers& workers,
+                                           const std::vector<RawPiece>& raw, double grid, double regionSize,
+                                           const Progress& progress) {
+  const size_t n = raw.size();
+  std::vector<std::array<double, 5>> env(n);
+  for (size_t i = 0; i < n; ++i) env[i] = envelopeKey(ctx, raw[i].geom.get());
+  // Neighbours: the pieces whose envelope comes within two grid steps of a piece's envelope (a hot
+  // pixel is one grid step wide), itself included, in increasing order.
+  std::vector<std::vector<int>> near(n);
+  {
+    std::vector<const GEOSGeometry*> rawGeoms;
+    for (const RawPiece& piece : raw) rawGeoms.push_back(piece.geom.get());
+    GeometryIndex index(ctx, rawGeoms);
+    const double pad = 2.0 * grid;
+    for (size_t i = 0; i < n; ++i) {
+      const auto& e = env[i];
+      geos::GeomPtr box = ctx.polygon(Polygon{{{e[0] - pad, e[1] - pad},
+                                               {e[2] + pad, e[1] - pad},
+                                               {e[2] + pad, e[3] + pad},
+                                               {e[0] - pad, e[3] + pad},
+                                               {e[0] - pad, e[1] - pad}},
+                                              {}});
+      near[i] = index.query(box.get());
+    }
+  }
+  // Regions in frame order, each with its pieces in increasing order.
+  std::vector<std::tuple<std::int64_t, std::int64_t, int>> keyed;
+  for (size_t i = 0; i < n; ++i)
+    keyed.emplace_back(static_cast<std::int64_t>(std::floor(env[i][0] / regionSize)),
+                       static_cast<std::int64_t>(std::floor(env[i][1] / regionSize)), static_cast<int>(i));
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<std::vector<int>> regions;
+  for (size_t k = 0; k < keyed.size(); ++k) {
+    if (k == 0 || std::get<0>(keyed[k]) != std::get<0>(keyed[k - 1]) ||
+        std::get<1>(keyed[k]) != std::get<1>(keyed[k - 1]))
+      regions.emplace_back();
+    regions.back().push_back(std::get<2>(keyed[k]));
+  }
+  ProgressTicker ticker(progress, "road geometry overlaps", regions.size());
+  std::vector<PavementPiece> resolved(n);
+  std::vector<std::vector<int>> stamp(workers.size(), std::vector<int>(n, -1));
+  workers.run(
+      regions.size(),
+      [&](size_t r, size_t worker, const geos::Context& c) {
+        const GEOSContextHandle_t h = c.handle();
+        std::vector<int>& mark = stamp[worker];  // mark[i] = 2r: own piece, 2r + 1: in the halo
+        const int own = 2 * static_cast<int>(r), halo = own + 1;
+        std::vector<int> members;
+        for (int i : regions[r]) {
+          mark[i] = own;
+          members.push_back(i);
+        }
+        const size_t ownCount = members.size();
+        for (size_t m = 0; m < ownCount; ++m)
+          for (int j : near[members[m]])
+            if (mark[j] != own && mark[j] != halo) {
+              mark[j] = halo;
+              members.push_back(j);
+            }
+        std::sort(members.begin(), members.end());
+        std::vector<geos::GeomPtr> boundaries;
+        std::vector<const GEOSGeometry*> memberGeoms;
+        for (int i : members) {
+          boundaries.push_back(c.own(GEOSBoundary_r(h, raw[i].geom.get()), "boundary"));
+          memberGeoms.push_back(raw[i].geom.get());
+        }
+        geos::GeomPtr lines = c.collection(GEOS_GEOMETRYCOLLECTION, std::move(boundaries));
+        geos::GeomPtr noded = c.own(GEOSUnaryUnionPrec_r(h, lines.get(), grid), "noding");
+        const GEOSGeometry* nodedRaw = noded.get();
+        geos::GeomPtr faces = c.own(GEOSPolygonize_r(h, &nodedRaw, 1), "polygonize");
+        const int faceCount = GEOSGetNumGeometries_r(h, faces.get());
+        GeometryIndex index(c, memberGeoms);
+        std::vector<MultiPolygon> shapes(members.size());
+        std::vector<std::vector<int>> facesOf(members.size());
+        for (int k = 0; k < faceCount; ++k) {
+          const GEOSGeometry* face = GEOSGetGeometryN_r(h, faces.get(), k);
+          geos::GeomPtr pt = c.own(GEOSPointOnSurface_r(h, face), "point on surface");
+          Vec2 probe;
+          GEOSGeomGetX_r(h, pt.get(), &probe.x);
+          GEOSGeomGetY_r(h, pt.get(), &probe.y);
+          for (int m : index.query(pt.get())) {
+            const int i = members[m];
+            if (shapes[m].empty()) shapes[m] = c.toPolygons(raw[i].geom.get());
+            if (!insidePolygons(shapes[m], probe)) continue;
+            if (mark[i] == own) facesOf[m].push_back(k);
+            break;
+          }
+        }
+        for (size_t m = 0; m < members.size(); ++m) {
+          const int i = members[m];
+          if (mark[i] != own || facesOf[m].empty()) continue;
+          // The piece's faces share their edges: their union is the walk of the edges they do not share.
+          MultiPolygon shape;
+          for (int k : facesOf[m]) {
+            MultiPolygon face = c.toPolygons(GEOSGetGeometryN_r(h, faces.get(), k));
+            shape.insert(shape.end(), face.begin(), face.end());
+          }
+          if (shape.size() > 1) {
+            std::vector<const Polygon*> parts;
+            for (const Polygon& p : shape) parts.push_back(&p);
+            MultiPolygon merged;
+            if (!coverageUnion(parts, merged)) {  // not met; an overlay union if it ever is
+              std::vector<geos::GeomPtr> geoms;
+              for (int k : facesOf[m])
+                geoms.push_back(c.own(GEOSGeom_clone_r(h, GEOSGetGeometryN_r(h, faces.get(), k)), "clone"));
+              merged = c.toPolygons(unionOnGrid(c, std::move(geoms), grid).get());
+            }
+            shape = std::move(merged);
+          }
+          PavementPiece& piece = resolved[i];
+          piece = {{}, raw[i].kind, raw[i].roadClass, raw[i].segment, raw[i].node};
+          for (Polygon& p : shape) {
+            if (!(area(p) >= grid)) continue;  // precision crumbs
+            orientClockwise(p);                // spec: clockwise polygons
+            piece.shape.push_back(std::move(p));
+          }
+        }
+        for (int i : members) mark[i] = -1;
+      },
+      [&](size_t done) { ticker.tick(done); });
+  ticker.finish();
+  return resolved;
+}
+
 }  // namespace
 
 std::string_view pavementKindName(PavementKind kind) {
@@ -505,13 +655,11 @@ RoadGeometry buildRoadGeometry(const RoadNetwork& network, const RoadGeometryOpt
     ticker.tick();
   }
 
-  // Overlap resolution: every piece loses what higher-priority pieces already cover. Each piece only
-  // reads the snapped raw pieces, so the pieces are resolved in parallel, one result slot each. These
-  // overlays stay snap-rounded on the grid: with floating ones (2.2 CPU s less at
-  // 1024²) a tiled run's pieces no longer matched the single run's (Monaco, tiles of 120 cells with a
-  // halo of 64: one piece more), which the snap-rounded ones do.
+  // Overlap resolution: every piece loses what higher-priority pieces already cover, on the faces of one
+  // snap-rounded arrangement of all pieces (resolveOverlaps). Snap rounding keeps a tiled run's pieces
+  // equal to the single run's, which floating overlays did not (issue 21, round 4).
   const Progress resolve = subProgress(progress, 0.5, 1.0);
-  ProgressTicker resolveTicker(resolve, "road geometry overlaps", raw.size());
+  reportProgress(resolve, 0.0, "road geometry overlaps");
   {
     std::vector<geos::GeomPtr> snapped(raw.size());
     workers.run(raw.size(), [&](size_t i, size_t, const geos::Context& c) {
@@ -519,43 +667,10 @@ RoadGeometry buildRoadGeometry(const RoadNetwork& network, const RoadGeometryOpt
     });
     for (size_t i = 0; i < raw.size(); ++i) raw[i].geom = std::move(snapped[i]);
   }
-  std::vector<const GEOSGeometry*> rawGeoms;
-  for (const RawPiece& piece : raw) rawGeoms.push_back(piece.geom.get());
-  std::vector<std::vector<int>> candidates(raw.size());
-  {
-    GeometryIndex index(ctx, rawGeoms);
-    for (size_t i = 0; i < raw.size(); ++i) candidates[i] = index.query(raw[i].geom.get());
-  }
-  std::vector<PavementPiece> resolved(raw.size());
-  workers.run(
-      raw.size(),
-      [&](size_t i, size_t, const geos::Context& c) {
-        std::vector<geos::GeomPtr> winners;
-        for (int j : candidates[i]) {
-          if (static_cast<size_t>(j) >= i) break;
-          if (GEOSIntersects_r(c.handle(), raw[j].geom.get(), raw[i].geom.get()) == 1)
-            winners.push_back(c.own(GEOSGeom_clone_r(c.handle(), raw[j].geom.get()), "clone"));
-        }
-        geos::GeomPtr kept;
-        if (winners.empty()) {
-          kept = c.own(GEOSGeom_clone_r(c.handle(), raw[i].geom.get()), "clone");
-        } else {
-          geos::GeomPtr cover =
-              winners.size() == 1 ? std::move(winners.front()) : unionOnGrid(c, std::move(winners), grid);
-          kept = c.own(GEOSDifferencePrec_r(c.handle(), raw[i].geom.get(), cover.get(), grid), "difference");
-        }
-        PavementPiece& piece = resolved[i];
-        piece = {{}, raw[i].kind, raw[i].roadClass, raw[i].segment, raw[i].node};
-        for (Polygon& p : c.toPolygons(kept.get())) {
-          if (!(area(p) >= grid)) continue;  // precision crumbs
-          orientClockwise(p);                // spec: clockwise polygons
-          piece.shape.push_back(std::move(p));
-        }
-      },
-      [&](size_t done) { resolveTicker.tick(done); });
+  std::vector<PavementPiece> resolved =
+      resolveOverlaps(ctx, workers, raw, grid, options.overlapRegion, resolve);
   for (PavementPiece& piece : resolved)
     if (!piece.shape.empty()) out.pieces.push_back(std::move(piece));
-  resolveTicker.finish();
   return out;
 }
 

@@ -2,8 +2,9 @@
 // curbs at a half-width from the centreline, pavement per segment (the triangle strip of its curb
 // vertices), octagonal culs-de-sac at secondary dead ends, curb corners from the four candidates in
 // clockwise winding order (with the parallel-pair case) and convex intersection polygons. Overlaps
-// between pieces are resolved with GEOS overlay on a fixed precision grid so that pavement pieces never
-// overlap: intersection and cul-de-sac pieces win, then primary segments, then secondary segments.
+// between pieces are resolved on one snap-rounded arrangement of all their boundaries on a fixed
+// precision grid, so that pavement pieces never overlap and meet on exactly shared vertices (a polygon
+// coverage): intersection and cul-de-sac pieces win, then primary segments, then secondary segments.
 //
 // All coordinates are in the internal frame of spec §0 (cells).
 #pragma once
@@ -52,6 +53,11 @@ struct RoadGeometryOptions {
   int curbReturnSegments = 4;
   /// Overlay precision grid, in cells (see kDefaultPrecisionGrid).
   double precisionGrid = kDefaultPrecisionGrid;
+  /// Side of the squares, anchored at the frame's origin, whose pieces are resolved together
+  /// (resolveOverlaps in road_geometry.cpp), in cells ([INFERENCE]: each square also nodes the pieces
+  /// near its own, so small squares repeat work and large ones leave a core idle; any value gives the
+  /// same pieces).
+  double overlapRegion = 128.0;
   /// Worker threads of the overlap resolution; 0 = all cores. Does not change the output.
   int threads = 0;
 };
