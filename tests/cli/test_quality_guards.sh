@@ -34,6 +34,7 @@
 #                                                       (issue 21 round 6, pavement as a coverage, a re-draw: monaco band recentred on 0.0959;
 #                                                        seeds 1-5 monaco 0.0959/0.0950/0.0997/0.0929/0.0940 (main 0.0998/0.0979/0.0964/0.0928/0.0933),
 #                                                        bubenec 0.1893/0.2751/0.2489/0.2425/0.2232 (main 0.1907/0.2240/0.2701/0.2548/0.3192))
+#                                                       (merge of issue 20 round 5 and issue 21 round 6: monaco L1 0.0961, band recentred on it)
 #   land-use L1 error (monaco, every road kept)  0.1103
 #   mean parcel cost per block     78.86      75.80    (vectorize_report.cost; bubenec 68.78 before issue 20's B7 arms fitted beyond the window)
 #   road p95 truth->result cells    0.993      0.512
@@ -246,7 +247,7 @@ expect_eq "$(wc -w <<<"$parts")" "3" "boundary -suburbs 200: city and suburbs"
 for a in $parts; do [ "$a" -ge 200 ] || fail "boundary -suburbs 200: a part of $a pixels"; done
 
 #     city    roads nodes blocks parcels spines  match      iou        ratio      L1           cost         p95 t->r   p95 r->t   turning    misplaced
-guard monaco  1061  776   221    1201    57      0.56:0.69  0.62:0.76  0.95:1.10  0.089:0.109  69.6:85.0    0.89:1.09  0.66:0.81  0.94:1.15  0.686:0.838
+guard monaco  1061  776   221    1201    57      0.56:0.69  0.62:0.76  0.95:1.10  0.086:0.106  69.6:85.0    0.89:1.09  0.66:0.81  0.94:1.15  0.686:0.838
 guard bubenec 95    68    13     164     0       0.70:0.86  0.68:0.83  0.95:1.05  0.181:0.221  68.2:83.4    0.46:0.56  0.43:0.53  1.16:1.41  0.629:0.769
 
 finish
