@@ -705,6 +705,34 @@ bool stemGoesOn(const Grid<std::uint8_t>& cells, const std::vector<ClusterLine>&
   return own;
 }
 
+/// Per arm: a dead end within the window (the arm's last node ends its chain with one link) whose stem
+/// line is fitted and whose every node's placement lies within the band of one of the cluster's through
+/// roads (ThroughRoadOptions::spursInBands): a street's staircase beside another road's band, split off
+/// by the skeleton. None when an arm that goes on has no line (it would be joined with a bend).
+std::vector<char> spursInBands(const RoadGraph& graph, const std::vector<Arm>& arms,
+                               const std::vector<ClusterLine>& lines, const std::vector<std::size_t>& lineOf,
+                               const ThroughRoadOptions& options) {
+  std::vector<char> spur(arms.size(), 0);
+  auto deadEnd = [&](const Arm& arm) {
+    return !arm.nodes.empty() && graph.nodes[arm.nodes.back()].links.size() == 1;
+  };
+  for (std::size_t a = 0; a < arms.size(); ++a)
+    if (!deadEnd(arms[a]) && lineOf[a] == SIZE_MAX) return spur;
+  for (std::size_t a = 0; a < arms.size(); ++a) {
+    if (!deadEnd(arms[a]) || lineOf[a] == SIZE_MAX || lines[lineOf[a]].through) continue;
+    for (std::size_t l = 0; l < lines.size() && !spur[a]; ++l) {
+      if (!lines[l].through) continue;
+      const double band = digitalLineBand(lines[l].direction) + options.slack + kPlacementRounding;
+      bool inBand = true;
+      for (int k : arms[a].nodes)
+        inBand =
+            inBand && std::fabs(cross(lines[l].direction, graph.nodes[k].placed - lines[l].centre)) <= band;
+      spur[a] = inBand ? 1 : 0;
+    }
+  }
+  return spur;
+}
+
 bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, const std::vector<int>& inner,
                         const std::vector<std::pair<int, int>>& innerStarts, double clusterReach,
                         const ThroughRoadOptions& options, const Surroundings& around, double& longestRebuilt,
@@ -748,6 +776,11 @@ bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, con
       lineOf[a] = lines.size();
       lines.push_back({arms[a].centre, arms[a].direction, false, false, graph.nodes[first[a]].type});
     }
+  // A spur whose nodes all lie in a through road's band is that road's cells (spursInBands): no stem.
+  const std::vector<char> spur = options.spursInBands ? spursInBands(graph, arms, lines, lineOf, options)
+                                                      : std::vector<char>(arms.size(), 0);
+  for (std::size_t a = 0; a < arms.size(); ++a)
+    if (spur[a]) lines[lineOf[a]].dropped = true;
   // Where the lines meet near the cluster: through roads crossing each other, and each stem where it
   // first meets a through road coming in from its own cells.
   auto nearCluster = [&](const Vec2& p) {
@@ -964,8 +997,12 @@ bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, con
   std::vector<Vec2> cells;
   auto lineTolerance = [&](std::size_t l) { return digitalLineBand(lines[l].direction) + options.slack; };
   for (std::size_t a = 0; a < arms.size(); ++a) {
-    const int at = ids[armPoint[a]];
     const Arm& arm = arms[a];
+    if (spur[a]) {  // the through road's line covers its cells
+      for (int k : arm.nodes) graph.removeNode(k);
+      continue;
+    }
+    const int at = ids[armPoint[a]];
     std::size_t k = 0;
     if (lineOf[a] != SIZE_MAX && arm.movable > 0 && arm.nodes[0] == first[a] && anchors[a] >= 0) {
       const Vec2 x = points[armPoint[a]].p;

@@ -114,6 +114,13 @@ struct ThroughRoadOptions {
   /// there (a junction of the two); false = they are left to cross on their links (and the rebuild is
   /// undone).
   bool stemsCross = true;
+  /// A dead-end arm that ends within the window (a spur a cell or two long) and whose every node lies
+  /// within the band of one of the cluster's through roads is that road's cells, where a street's
+  /// staircase runs beside another road's band: it gets no line of its own and goes with the rebuild
+  /// (its cells stay covered, or the rebuild is undone). Only when every arm that goes on has a line:
+  /// one without a line is joined to its nearest junction with a bend. false = such a spur keeps a stem
+  /// line fitted on its few placements. Measured: docs/vectorize.md, "Junction clusters" (round 6).
+  bool spursInBands = true;
   /// A road between two ends is also straight when some straight line, not only its placements' total
   /// least-squares line, holds every placement within its band and both ends within endOffset of that
   /// band (the digital straight line test: at a staircase's step, a primary's 2x2 corners or a street's

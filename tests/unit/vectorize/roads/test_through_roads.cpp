@@ -668,6 +668,66 @@ TEST(JunctionClusters, AStemWhoseCellsGoOnThroughAThroughRoadCrossesItToTheNext)
   }
 }
 
+TEST(JunctionClusters, ASpurInAThroughRoadsBandGoesWithTheRebuild) {
+  // Cells (internal frame, 32 x 32): a primary P along x = 20 (columns 19 and 20) and a street C at 60
+  // degrees crossing it at X = (20, 15). The skeleton joined C's south-west side to P at J0 = (20, 13)
+  // and its north-east side at J1 = (20, 19), and split off the cells where C's staircase runs beside
+  // P's band as a spur from J2 = (20, 17): two nodes at x = 21.5, within C's band. Its two placements fit
+  // a vertical stem of their own; with spursInBands the spur is C's cells and goes with the rebuild.
+  const int size = 32;
+  Grid<std::uint8_t> cells(size, size, static_cast<std::uint8_t>(LandUse::Residential));
+  const Vec2 x(20, 15), d = unitAt(60);
+  for (int r = 0; r < size; ++r)
+    for (int c = 0; c < size; ++c) {
+      const Vec2 centre(c + 0.5, size - r - 0.5);
+      if (std::fabs(cross(d, centre - x)) <= digitalLineBand(d))
+        cells.at(c, r) = static_cast<std::uint8_t>(LandUse::SecondaryRoad);
+      if (c == 19 || c == 20) cells.at(c, r) = static_cast<std::uint8_t>(LandUse::PrimaryRoad);
+    }
+  const std::vector<Vec2> spurAt{{21.5, 17.0}, {21.75, 17.75}};
+  for (const Vec2& s : spurAt) EXPECT_LE(std::fabs(cross(d, s - x)), digitalLineBand(d));
+  auto run = [&](bool rule) {
+    RoadGraph g;
+    auto primary = [&](const std::vector<Vec2>& points, int from) {
+      const std::vector<int> ids = path(g, points, from);
+      for (int k : ids) g.nodes[k].type = NodeType::Primary;
+      return ids;
+    };
+    const int j0 = primary({{20, 13}}, -1)[0];
+    std::vector<Vec2> south, inner02{{20, 14}, {20, 15}, {20, 16}, {20, 17}}, north{{20, 18}, {20, 19}};
+    for (int y = 12; y >= 1; --y) south.push_back({20, static_cast<double>(y)});
+    primary(south, j0);
+    const int j2 = primary(inner02, j0).back();
+    const int j1 = primary(north, j2).back();
+    north.clear();
+    for (int y = 20; y < size; ++y) north.push_back({20, static_cast<double>(y)});
+    primary(north, j1);
+    std::vector<Vec2> cSouthWest, cNorthEast;
+    for (int k = 3; k <= 12; ++k) cSouthWest.push_back(x - d * k);
+    for (int k = 4; k <= 14; ++k) cNorthEast.push_back(x + d * k);
+    path(g, cSouthWest, j0);
+    path(g, cNorthEast, j1);
+    const std::vector<int> spur = path(g, spurAt, j2);
+    ThroughRoadOptions options;
+    options.cells = &cells;
+    options.spursInBands = rule;
+    const ThroughRoadStats s = runPlaced(g, options);
+    return std::make_tuple(s, g, spur);
+  };
+  const auto [off, offGraph, offSpur] = run(false);
+  EXPECT_EQ(off.clusters, 1u);
+  EXPECT_TRUE(offGraph.nodes[offSpur.back()].alive);  // a dead end left in C's band
+  const auto [on, g, spur] = run(true);
+  EXPECT_EQ(on.clusters, 1u);
+  EXPECT_EQ(on.clustersConsolidated, 1u);
+  for (int k : spur) EXPECT_FALSE(g.nodes[k].alive);
+  // P and C cross at X, their only junction, and no dead end is left near it.
+  ASSERT_EQ(junctions(g).size(), 1u);
+  EXPECT_LT(distance(g.nodes[junctions(g)[0]].p, x), 0.35);
+  for (std::size_t k = 0; k < g.nodes.size(); ++k)
+    if (g.nodes[k].alive && g.nodes[k].links.size() == 1) EXPECT_GT(distance(g.nodes[k].p, x), 8.0);
+}
+
 TEST(JunctionClusters, TwoStemsCrossingOnTheirWayToTheThroughRoadCrossEachOther) {
   // A street along y = 0 and two streets from the north that cross each other at X = (0, 2) and end on
   // it: P from the north-east at 60 degrees (meeting the street at (-1.15, 0)) and Q from the
