@@ -5,7 +5,7 @@ set -euo pipefail
 PACKAGES=(
   build-essential cmake ninja-build pkg-config git
   libgdal-dev gdal-bin python3-gdal libgeos-dev libproj-dev proj-bin proj-data
-  libcgal-dev libgmp-dev libmpfr-dev libboost-dev libeigen3-dev
+  libcgal-dev libgmp-dev libmpfr-dev libboost-dev libeigen3-dev libmimalloc-dev
   nlohmann-json3-dev libgtest-dev googletest sqlite3 python3 python3-numpy jq
   libosmium2-dev libexpat1-dev zlib1g-dev libbz2-dev python3-matplotlib
   qgis python3-qgis qgis-providers grass-core xvfb xauth zip clang-format
