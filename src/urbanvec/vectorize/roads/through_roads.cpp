@@ -273,6 +273,7 @@ void restore(RoadGraph& graph, const std::vector<int>& nodes, const std::vector<
 struct Arm {
   std::vector<int> nodes;
   std::size_t movable = 0;  ///< nodes[0, movable) may be moved
+  std::vector<int> chain;   ///< followChain(at, next): the arm's nodes and the chain beyond them
   std::vector<Vec2> fitPlacements;
   bool fitted = false;
   Vec2 centre, direction;  ///< direction points away from the intersection
@@ -282,7 +283,8 @@ struct Arm {
 Arm buildArm(const RoadGraph& graph, int at, int next, const ThroughRoadOptions& options) {
   Arm arm;
   const Vec2 origin = graph.nodes[at].placed;
-  const std::vector<int> chain = followChain(graph, at, next);
+  arm.chain = followChain(graph, at, next);
+  const std::vector<int>& chain = arm.chain;
   std::size_t beyond = chain.size();  // the first chain node past the window, when the chain goes on
   for (std::size_t c = 0; c < chain.size(); ++c) {
     const int k = chain[c];
@@ -533,7 +535,7 @@ void placeIntersection(RoadGraph& graph, int at, const ThroughRoadOptions& optio
   std::vector<Vec2> onLine, cells, scratch;
   for (Arm& arm : arms) {
     if (arm.movable == 0) continue;
-    const std::vector<int> chain = followChain(graph, at, arm.nodes[0]);
+    const std::vector<int>& chain = arm.chain;  // the links have not changed since buildArm
     for (std::size_t count = arm.movable; count >= 1; --count) {
       const int anchor = chain[std::min(count, chain.size() - 1)];
       if (anchor == at) break;
@@ -735,8 +737,7 @@ std::vector<char> spursInBands(const RoadGraph& graph, const std::vector<Arm>& a
 
 bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, const std::vector<int>& inner,
                         const std::vector<std::pair<int, int>>& innerStarts, double clusterReach,
-                        const ThroughRoadOptions& options, const Surroundings& around, double& longestRebuilt,
-                        ThroughRoadStats& stats) {
+                        const ThroughRoadOptions& options, Surroundings& around, ThroughRoadStats& stats) {
   auto inCluster = [&](int k) {
     return std::binary_search(junctions.begin(), junctions.end(), k) ||
            std::binary_search(inner.begin(), inner.end(), k);
@@ -756,8 +757,10 @@ bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, con
         continue;
       // A long road between two of its junctions (or back to one): left as it is, since both ends'
       // arms would claim its nodes.
-      if (inCluster(next) || inCluster(followChain(graph, j, next).back())) return false;
-      arms.push_back(buildArm(graph, j, next, options));
+      if (inCluster(next)) return false;
+      Arm arm = buildArm(graph, j, next, options);
+      if (inCluster(arm.chain.back())) return false;
+      arms.push_back(std::move(arm));
       attach.push_back(j);
       first.push_back(next);
     }
@@ -940,7 +943,7 @@ bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, con
   std::vector<int> anchors(arms.size(), -1);
   for (std::size_t a = 0; a < arms.size(); ++a)
     if (arms[a].movable > 0) {
-      const std::vector<int> chain = followChain(graph, attach[a], first[a]);
+      const std::vector<int>& chain = arms[a].chain;  // from attach[a] through first[a]; not rebuilt yet
       if (arms[a].movable < chain.size() && chain[arms[a].movable] != attach[a])
         anchors[a] = chain[arms[a].movable];
     }
@@ -1047,21 +1050,28 @@ bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, con
     graph.nodes[ids[q]].type = primary ? NodeType::Primary : NodeType::Secondary;
   }
   // The links between the junctions run on road cells, and nothing crosses or is uncovered.
-  bool offCells = false;
-  for (std::size_t b = 0; b < between.size(); ++b)
-    if (options.cells && !offCells)
-      offCells = !segmentOnCells(*options.cells, points[between[b].first].p, points[between[b].second].p,
-                                 betweenReach[b] + kPlacementRounding);
+  auto betweenOffCells = [&] {
+    for (std::size_t b = 0; b < between.size(); ++b)
+      if (!segmentOnCells(*options.cells, graph.nodes[ids[between[b].first]].p,
+                          graph.nodes[ids[between[b].second]].p, betweenReach[b] + kPlacementRounding))
+        return true;
+    return false;
+  };
+  const bool offCells = options.cells && betweenOffCells();
   // The checks look around where the nodes are now, as far as the longest link (the rebuilt ones
   // included).
   LiveIndex& live = *around.live;
-  double longest = around.longestLink;
-  for (const std::vector<int>* nodes : {&touched, &added})
-    for (int k : *nodes) {
+  Surroundings now = around;
+  auto followMoves = [&](const std::vector<int>& nodes) {
+    for (int k : nodes) {
       live.update(k);
       for (int l : graph.nodes[k].links)
-        longest = std::max(longest, distance(graph.nodes[k].p, graph.nodes[l].p));
+        now.longestLink = std::max(now.longestLink, distance(graph.nodes[k].p, graph.nodes[l].p));
     }
+    now.coverQuery = now.longestLink + options.coverRadius;
+  };
+  followMoves(touched);
+  followMoves(added);
   // Every link of the rebuilt nodes leads to a live node (a backstop: an arm's nodes removed by another
   // arm would leave a dangling link).
   bool dangling = false;
@@ -1069,20 +1079,17 @@ bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, con
     for (int k : *nodes)
       if (graph.nodes[k].alive)
         for (int l : graph.nodes[k].links) dangling = dangling || !graph.nodes[l].alive;
-  Surroundings now = around;
-  now.longestLink = longest;
-  now.coverQuery = longest + options.coverRadius;
   bool reject = offCells || dangling;
   if (!reject && movedLinksCross(graph, now, moved)) {
     ++stats.crossingsAvoided;
     reject = true;
   }
   if (!reject && options.cells) {
-    const std::vector<Vec2> missing =
-        uncoveredCells(graph, *options.cells, now, covered, options.coverRadius, SIZE_MAX);
+    // Only the nudge reads which cells are uncovered; otherwise the first one decides.
+    const std::vector<Vec2> missing = uncoveredCells(graph, *options.cells, now, covered, options.coverRadius,
+                                                     options.nudgeToCover ? SIZE_MAX : 1);
     if (!missing.empty()) {
       reject = true;
-      bool missingCounted = false;
       // Retry once with the junctions on one through road nudged toward the uncovered cells (issue 20).
       // Where two through roads cross, the junction stays at their crossing (moved, both roads bend at
       // it), and approach nodes stay on their lines (moved sideways, they draw hooks).
@@ -1096,26 +1103,18 @@ bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, con
         nudgeable.push_back(n);
       }
       if (options.nudgeToCover && nudgeToCover(graph, nudgeable, lines, missing, options)) {
-        for (const Nudgeable& n : nudgeable) live.update(n.node);
-        for (const Nudgeable& n : nudgeable)
-          for (int l : graph.nodes[n.node].links)
-            longest = std::max(longest, distance(graph.nodes[n.node].p, graph.nodes[l].p));
-        now.longestLink = longest;
-        now.coverQuery = longest + options.coverRadius;
-        bool off = false;
-        for (std::size_t b = 0; b < between.size(); ++b)
-          off = off ||
-                !segmentOnCells(*options.cells, graph.nodes[ids[between[b].first]].p,
-                                graph.nodes[ids[between[b].second]].p, betweenReach[b] + kPlacementRounding);
-        const bool crossing = !off && movedLinksCross(graph, now, moved);
-        if (crossing) ++stats.crossingsAvoided;
-        if (!off && !crossing && !anyUncovered(graph, *options.cells, now, covered, options.coverRadius)) {
+        std::vector<int> nudged;
+        for (const Nudgeable& n : nudgeable) nudged.push_back(n.node);
+        followMoves(nudged);
+        if (betweenOffCells())
+          ++stats.uncoveringAvoided;
+        else if (!rejectMoves(graph, options, now, moved, covered, stats)) {  // counts what it rejects
           reject = false;
           ++stats.clustersNudged;
         }
-        if (crossing) missingCounted = true;
+      } else {
+        ++stats.uncoveringAvoided;
       }
-      if (reject && !missingCounted) ++stats.uncoveringAvoided;
     }
   }
   if (reject) {
@@ -1128,7 +1127,7 @@ bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, con
       for (int k : *nodes) live.update(k);
     return false;
   }
-  longestRebuilt = longest;
+  around.longestLink = now.longestLink;  // later clusters look as far as the links rebuilt here
   ++stats.clustersConsolidated;
   stats.junctionsRemoved +=
       junctions.size() - std::min(junctions.size(), points.size());  // (net, per cluster)
@@ -1140,9 +1139,9 @@ bool consolidateCluster(RoadGraph& graph, const std::vector<int>& junctions, con
 void consolidateJunctions(RoadGraph& graph, const ThroughRoadOptions& options, ThroughRoadStats& stats) {
   const std::size_t n = graph.nodes.size();
   LiveIndex live(graph, 4.0);
-  double longest = longestLink(graph);  // grows with the links rebuilt clusters make
-  Surroundings around;
+  Surroundings around;  // its longestLink grows with the links rebuilt clusters make
   around.live = &live;
+  around.longestLink = longestLink(graph);
   auto junction = [&](int k) { return isRoad(graph.nodes[k]) && graph.nodes[k].links.size() >= 3; };
   std::vector<int> parent(n);
   for (std::size_t i = 0; i < n; ++i) parent[i] = static_cast<int>(i);
@@ -1239,10 +1238,8 @@ void consolidateJunctions(RoadGraph& graph, const ThroughRoadOptions& options, T
     ++stats.clusters;
     std::sort(innerStarts[r].begin(), innerStarts[r].end());
     // The lines meet within the cluster's longest inner chain, or B1's window, of its junctions.
-    Surroundings now = around;
-    now.longestLink = longest;
     consolidateCluster(graph, members[r], inner, innerStarts[r], std::max(reach[r], options.window), options,
-                       now, longest, stats);
+                       around, stats);
   }
 }
 
