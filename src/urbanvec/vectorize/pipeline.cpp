@@ -303,7 +303,7 @@ VectorizeResult runPipeline(const VectorizeInput& input, VectorizeInput* release
     // The simplified network and, when it is simplified, the exact one, side by side: one walk of the
     // graph for both (its planar graph is gone before the simplifier builds its index).
     const bool simplified = options.outputSimplification > 0;
-    result.network = buildRoadNetwork(graph, 0.0);
+    result.network = buildRoadNetwork(graph);
     // Nothing reads the graph after this walk: it goes before the simplifier builds its index (about a
     // hundred bytes a node), unless the caller keeps it.
     if (!options.keepRoadGraph) {

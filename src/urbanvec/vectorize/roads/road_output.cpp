@@ -47,11 +47,7 @@ const char* className(NodeType t) {
 
 }  // namespace
 
-namespace {
-
-/// buildRoadNetwork's segments and ends before the simplification (its planar graph and walks are
-/// gone when this returns, so they do not stay beside the simplifier's index).
-RoadNetwork networkChains(const RoadGraph& g) {
+RoadNetwork buildRoadNetwork(const RoadGraph& g) {
   RoadNetwork net;
   const size_t n = g.nodes.size();
   std::vector<std::int32_t> outId(n, -1);
@@ -129,8 +125,6 @@ RoadNetwork networkChains(const RoadGraph& g) {
   return net;
 }
 
-}  // namespace
-
 void simplifyRoadNetwork(RoadNetwork& net, double tolerance) {
   if (!(tolerance > 0) || net.segments.empty()) return;
   std::vector<LineString> lines;
@@ -140,12 +134,6 @@ void simplifyRoadNetwork(RoadNetwork& net, double tolerance) {
   lines = simplifyTogether(lines, tolerance);
   for (size_t k = 0; k < lines.size(); ++k) net.segments[k].points = std::move(lines[k]);
   releaseFreedMemory();  // the simplifier's index: ~400 bytes per road vertex
-}
-
-RoadNetwork buildRoadNetwork(const RoadGraph& g, double simplifyTolerance) {
-  RoadNetwork net = networkChains(g);
-  simplifyRoadNetwork(net, simplifyTolerance);
-  return net;
 }
 
 std::vector<Layer> roadLayers(const RoadNetwork& net, const GridSpec& spec) {

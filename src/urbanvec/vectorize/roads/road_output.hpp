@@ -21,12 +21,11 @@ std::vector<LineString> simplifyTogether(const std::vector<LineString>& lines, d
 
 /// The segments and segment-end nodes of the graph, internal frame. A node ends segments when its
 /// degree is not 2 or its two links carry different classes; rings of degree-2 nodes start at their
-/// lowest node (kind Road). When `simplifyTolerance` > 0 (pw) the segments are simplified together
-/// with GEOS's topology-preserving simplifier, which keeps their end nodes and adds no crossings.
-RoadNetwork buildRoadNetwork(const RoadGraph& graph, double simplifyTolerance = 0.0);
+/// lowest node (kind Road).
+RoadNetwork buildRoadNetwork(const RoadGraph& graph);
 
-/// The simplification of buildRoadNetwork, on a network built with tolerance 0: buildRoadNetwork(g, t)
-/// is buildRoadNetwork(g, 0) simplified with tolerance t. Does nothing for t <= 0.
+/// The segments simplified together (pw) with GEOS's topology-preserving simplifier, which keeps their
+/// end nodes and adds no crossings. Does nothing for tolerance <= 0.
 void simplifyRoadNetwork(RoadNetwork& network, double tolerance);
 
 /// `roads` (road_id, road_class, from_node, to_node, length in CRS units) and `road_nodes` (node_id,

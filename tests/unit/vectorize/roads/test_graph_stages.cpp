@@ -701,7 +701,7 @@ TEST(RoadOutput, SegmentsRunBetweenEndsInWalkOrderAndRingsStartAtTheirLowestNode
   g.link(5, 4);
   g.link(6, 7);
   g.link(6, 8);
-  const RoadNetwork net = buildRoadNetwork(g, 0.0);
+  const RoadNetwork net = buildRoadNetwork(g);
   ASSERT_EQ(net.segments.size(), 4u);
   // Ends are numbered by node id (4, 6, 7, 8), then the ring's start node.
   EXPECT_EQ(net.segments[0].points, (LineString{{5, 0}, {6, 0}, {7, 0}}));  // from end 4, its only slot
