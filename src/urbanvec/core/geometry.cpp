@@ -5,6 +5,13 @@
 
 namespace urbanvec {
 
+bool ringContains(const Ring& ring, const Vec2& p) {
+  bool inside = false;
+  for (size_t i = 0, n = ring.size(); i + 1 < n; ++i)
+    if (edgeCrossesRayRight(ring[i], ring[i + 1], p)) inside = !inside;
+  return inside;
+}
+
 double signedArea(const Ring& ring) {
   double twice = 0.0;
   for (size_t i = 0; i + 1 < ring.size(); ++i) twice += cross(ring[i], ring[i + 1]);

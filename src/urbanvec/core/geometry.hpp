@@ -58,9 +58,17 @@ inline double distanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b) {
   return distance(p, a + ab * t);
 }
 
+/// The even-odd crossing test's step: the edge a-b crosses the ray from p toward +x.
+inline bool edgeCrossesRayRight(const Vec2& a, const Vec2& b, const Vec2& p) {
+  return (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y);
+}
+
 using LineString = std::vector<Vec2>;
 /// A closed ring; the first point is repeated at the end.
 using Ring = std::vector<Vec2>;
+
+/// Even-odd crossing test of a point against a closed ring (points on the ring: either answer).
+bool ringContains(const Ring& ring, const Vec2& p);
 
 struct Polygon {
   Ring outer;

@@ -132,16 +132,6 @@ int absorbSlivers(std::vector<PavementPiece>& pavement, const MultiPolygon& sliv
   return absorbed;
 }
 
-bool ringContains(const Ring& ring, const Vec2& p) {
-  bool inside = false;
-  for (size_t i = 0, n = ring.size(); i + 1 < n; ++i) {
-    const Vec2& a = ring[i];
-    const Vec2& b = ring[i + 1];
-    if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y)) inside = !inside;
-  }
-  return inside;
-}
-
 namespace {
 
 std::uint64_t bitsOf(double v) {
@@ -328,11 +318,8 @@ bool coverageUnion(const std::vector<const Polygon*>& polygons, MultiPolygon& ou
     const size_t k =
         std::min(st.edges.size() - 1, static_cast<size_t>(std::max(0.0, (p.y - st.y0) / st.height)));
     bool inside = false;
-    for (std::uint32_t e : st.edges[k]) {
-      const Vec2& a = r[e];
-      const Vec2& b = r[e + 1];
-      if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y)) inside = !inside;
-    }
+    for (std::uint32_t e : st.edges[k])
+      if (edgeCrossesRayRight(r[e], r[e + 1], p)) inside = !inside;
     return inside;
   };
   std::vector<size_t> byX(shells.size());
@@ -374,16 +361,17 @@ BlockOutline outlineBlocks(const std::vector<PavementPiece>& pavement, const Blo
   BlockOutline out;
   // Stage C's pieces form a coverage: their union is the walk of the edges that are not shared. The
   // frame-anchored overlay union stays for pavement that is not one (pieces made elsewhere).
-  if (!coverageUnion(pavement, out.pavementUnion)) {
+  MultiPolygon pavementUnion;  // on the precision grid; freed when D1 returns
+  if (!coverageUnion(pavement, pavementUnion)) {
     std::vector<geos::GeomPtr> parts;
     for (const PavementPiece& piece : pavement) parts.push_back(ctx.multiPolygon(piece.shape));
     const GeosWorkers workers(options.threads);
     geos::GeomPtr all = frameAnchoredUnion(ctx, workers, std::move(parts), grid, options.unionSquare);
-    out.pavementUnion = ctx.toPolygons(all.get());
+    pavementUnion = ctx.toPolygons(all.get());
   }
   reportProgress(progress, 0.5, "block outlining");
 
-  const MultiPolygon& components = out.pavementUnion;
+  const MultiPolygon& components = pavementUnion;
   std::vector<geos::GeomPtr> filled;
   std::vector<geos::GeomPtr> probes;  // one point inside each component's pavement
   std::vector<const GEOSGeometry*> filledRaw;

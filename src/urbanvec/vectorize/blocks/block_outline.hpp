@@ -43,8 +43,6 @@ struct BlockOutline {
   /// The area inside the outer road perimeter of every top-level road network (pavement plus
   /// internal blocks), outer rings clockwise (spec D1 "save it as the perimeter").
   MultiPolygon perimeter;
-  /// Union of all pavement, on the precision grid.
-  MultiPolygon pavementUnion;
   /// Faces below minBlockArea: they belong to the pavement (see absorbSlivers).
   MultiPolygon slivers;
 };
@@ -61,8 +59,6 @@ BlockOutline outlineBlocks(const std::vector<PavementPiece>& pavement, const Blo
 bool coverageUnion(const std::vector<PavementPiece>& pieces, MultiPolygon& out);
 /// The same for polygons that form a coverage.
 bool coverageUnion(const std::vector<const Polygon*>& polygons, MultiPolygon& out);
-/// Even-odd crossing test of a point against a closed ring (points on the ring: either answer).
-bool ringContains(const Ring& ring, const Vec2& p);
 
 /// Merges every sliver into the pavement piece it touches that comes first by envelope (lower-left
 /// corner, then upper-right, then area: an order that does not depend on the pieces' numbering), so

@@ -119,8 +119,7 @@ BlocksResult vectorizeBlocks(const RoadNetwork& network, const SimulatedCity& ci
   result.perimeterCells = outline.perimeter;
   stats.absorbedSlivers =
       absorbSlivers(roads.pieces, outline.slivers, options.outline.precisionGrid, options.outline.threads);
-  MultiPolygon().swap(outline.pavementUnion);  // not read after D1
-  releaseFreedMemory();                        // D1's overlays
+  releaseFreedMemory();  // D1's overlays and union
   // Only D2-D5 read the simulated block of each cell: built after D1's union, not beside it.
   const Grid<int> blockOfCell = simulatedBlockOfCells(city);
 

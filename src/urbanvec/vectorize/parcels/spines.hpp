@@ -66,7 +66,6 @@ Polygon skeletonInput(const Polygon& block, const SpineOptions& options, const g
 
 /// The raw medial graph by the chosen method (the skeleton falls back to Zhang-Suen when CGAL cannot
 /// build one, e.g. on a degenerate polygon).
-
 SpineGraph rawSpineGraph(const Polygon& block, const SpineOptions& options, const geos::Context& geos);
 
 /// Steps 3-8 of D6 on a raw graph: spanning tree (longest edges dropped first, so 8-connected
