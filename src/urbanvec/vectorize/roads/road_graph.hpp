@@ -79,6 +79,27 @@ class NodeIndex {
   int nearest(const Vec2& p, double maxDistance, const std::function<bool(int)>& filter = {}) const;
   /// Indexed nodes within r of p.
   std::vector<int> within(const Vec2& p, double r) const;
+  /// Visits the indexed nodes within r of p, those in p's bucket first, until `visit` returns true;
+  /// true when it did. For checks that only ask whether any node qualifies: no list, no sort, and the
+  /// scan stops at the first hit (which is most often in p's own bucket).
+  template <class Visit>
+  bool anyWithin(const Vec2& p, double r, Visit&& visit) const {
+    if (ids_.empty()) return false;
+    const int x0 = bucketX(p.x - r), x1 = bucketX(p.x + r), y0 = bucketY(p.y - r), y1 = bucketY(p.y + r);
+    const int home = bucketY(p.y) * nx_ + bucketX(p.x);
+    auto bucket = [&](int b) {
+      for (int k = offsets_[b]; k < offsets_[b + 1]; ++k)
+        if (distance(graph_.nodes[ids_[k]].p, p) <= r && visit(ids_[k])) return true;
+      return false;
+    };
+    if (bucket(home)) return true;
+    for (int by = y0; by <= y1; ++by)
+      for (int bx = x0; bx <= x1; ++bx) {
+        const int b = by * nx_ + bx;
+        if (b != home && bucket(b)) return true;
+      }
+    return false;
+  }
 
  private:
   const RoadGraph& graph_;

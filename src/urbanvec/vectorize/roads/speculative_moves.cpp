@@ -13,15 +13,6 @@ namespace {
 constexpr std::size_t kItemsAhead = 2;
 }  // namespace
 
-std::vector<int> recordedWithin(const NodeIndex& index, const Vec2& p, double r, ReadFootprint* footprint) {
-  std::vector<int> hits = index.within(p, r);
-  if (footprint) {
-    footprint->queries.emplace_back(p, r);
-    footprint->hits.insert(footprint->hits.end(), hits.begin(), hits.end());
-  }
-  return hits;
-}
-
 /// A thread's copy of the graph, its index, and the positions of the copy before the item it runs.
 struct SpeculativeMoves::Worker {
   RoadGraph graph;

@@ -29,13 +29,24 @@ struct ReadFootprint {
   std::vector<int> hits;
 };
 
-/// NodeIndex::within, recording the query and its hits in `footprint` when it is set.
-std::vector<int> recordedWithin(const NodeIndex& index, const Vec2& p, double r, ReadFootprint* footprint);
+/// NodeIndex::anyWithin, recording the query and the nodes visited in `footprint` when it is set. The
+/// nodes the scan did not reach were not read: the answer does not depend on them (a node moving into
+/// the query's disc is caught by the recorded query).
+template <class Visit>
+bool recordedAnyWithin(const NodeIndex& index, const Vec2& p, double r, ReadFootprint* footprint,
+                       Visit&& visit) {
+  if (!footprint) return index.anyWithin(p, r, visit);
+  footprint->queries.emplace_back(p, r);
+  return index.anyWithin(p, r, [&](int k) {
+    footprint->hits.push_back(k);
+    return visit(k);
+  });
+}
 
 class SpeculativeMoves {
  public:
   /// One item: run it on `graph` (moving node positions only), querying `index` (built over `graph`)
-  /// through recordedWithin with `footprint`, which is null when nothing needs recording. An item run
+  /// through recordedAnyWithin with `footprint`, which is null when nothing needs recording. An item run
   /// again replaces what its earlier run produced (its statistics included).
   using Item = std::function<void(std::size_t item, RoadGraph& graph, const NodeIndex& index,
                                   ReadFootprint* footprint)>;

@@ -126,15 +126,15 @@ class LiveIndex {
     if (to >= 0) buckets_[to].push_back(k);
     bucketOf_[k] = to;
   }
-  /// The nodes within r of p, in no particular order (the checks using them only ask "any").
-  std::vector<int> within(const Vec2& p, double r) const {
-    std::vector<int> out;
+  /// NodeIndex::anyWithin over where the nodes are now.
+  template <class Visit>
+  bool anyWithin(const Vec2& p, double r, Visit&& visit) const {
     const int x0 = clampX(p.x - r), x1 = clampX(p.x + r), y0 = clampY(p.y - r), y1 = clampY(p.y + r);
     for (int y = y0; y <= y1; ++y)
       for (int x = x0; x <= x1; ++x)
         for (int k : buckets_[static_cast<std::size_t>(y) * nx_ + x])
-          if (distance(graph_.nodes[k].p, p) <= r) out.push_back(k);
-    return out;
+          if (distance(graph_.nodes[k].p, p) <= r && visit(k)) return true;
+    return false;
   }
 
  private:
@@ -162,10 +162,12 @@ struct Surroundings {
   LiveIndex* live = nullptr;           ///< instead of `index`: where the nodes are now (junction clusters)
 };
 
-/// The nodes within r of p: where they are now (live), or where `index` holds them (the caller pads r by
-/// how far nodes may have moved since).
-std::vector<int> nodesNear(const Surroundings& around, const Vec2& p, double r) {
-  return around.live ? around.live->within(p, r) : recordedWithin(*around.index, p, r, around.footprint);
+/// Visits the nodes within r of p until `visit` returns true (true when it did): where they are now
+/// (live), or where `index` holds them (the caller pads r by how far nodes may have moved since).
+template <class Visit>
+bool anyNodeNear(const Surroundings& around, const Vec2& p, double r, Visit&& visit) {
+  return around.live ? around.live->anyWithin(p, r, visit)
+                     : recordedAnyWithin(*around.index, p, r, around.footprint, visit);
 }
 
 /// The length of the graph's longest link (pw).
@@ -202,17 +204,14 @@ std::vector<Vec2> uncoveredCells(const RoadGraph& graph, const Grid<std::uint8_t
   std::vector<Vec2> out;
   for (std::int64_t k : candidates) {
     const Vec2 c = patchCentre(cells, static_cast<int>(k % cells.width), static_cast<int>(k / cells.width));
-    bool covered = false;
-    for (int a : nodesNear(around, c, around.coverQuery)) {
-      if (graph.nodes[a].type == NodeType::Perimeter) continue;  // perimeter links are no roads
+    const bool covered = anyNodeNear(around, c, around.coverQuery, [&](int a) {
+      if (graph.nodes[a].type == NodeType::Perimeter) return false;  // perimeter links are no roads
       for (int b : graph.nodes[a].links)
         if (graph.nodes[b].type != NodeType::Perimeter &&
-            distanceToSegment(c, graph.nodes[a].p, graph.nodes[b].p) <= radius) {
-          covered = true;
-          break;
-        }
-      if (covered) break;
-    }
+            distanceToSegment(c, graph.nodes[a].p, graph.nodes[b].p) <= radius)
+          return true;
+      return false;
+    });
     if (!covered) {
       out.push_back(c);
       if (out.size() >= limit) break;
@@ -251,11 +250,14 @@ bool movedLinksCross(const RoadGraph& graph, const Surroundings& around, const s
     const Vec2 a = graph.nodes[m].p;
     for (int q : graph.nodes[m].links) {
       const Vec2 b = graph.nodes[q].p;
-      for (int c : nodesNear(around, a, distance(a, b) + around.longestLink + 1.0))
-        for (int d : graph.nodes[c].links) {
-          if (c == m || c == q || d == m || d == q) continue;
-          if (segmentsCross(a, b, graph.nodes[c].p, graph.nodes[d].p)) return true;
-        }
+      if (anyNodeNear(around, a, distance(a, b) + around.longestLink + 1.0, [&](int c) {
+            for (int d : graph.nodes[c].links) {
+              if (c == m || c == q || d == m || d == q) continue;
+              if (segmentsCross(a, b, graph.nodes[c].p, graph.nodes[d].p)) return true;
+            }
+            return false;
+          }))
+        return true;
     }
   }
   return false;

@@ -1,6 +1,7 @@
 // Stages A4 and B1–B6 on small drawn grids and hand-made graphs with known answers (spec §11.1–11.2).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "../test_grids.hpp"
@@ -711,4 +712,41 @@ TEST(RoadOutput, SegmentsRunBetweenEndsInWalkOrderAndRingsStartAtTheirLowestNode
   EXPECT_EQ(net.segments[3].fromNode, net.segments[3].toNode);
   EXPECT_EQ(net.nodes.size(), 5u);
   EXPECT_EQ(net.nodes[4].kind, NetworkNodeKind::Road);
+}
+
+// The "any" query the node-moving stages ask (issue 21): it must see every node `within` returns and no
+// other, and stop at the first that qualifies.
+TEST(NodeIndex, AnyWithinVisitsExactlyTheNodesWithinAndStopsAtTheFirstHit) {
+  RoadGraph g;
+  for (int row = 0; row < 40; ++row)
+    for (int col = 0; col < 40; ++col)
+      g.addNode({col * 0.7 + 0.05 * (row % 3), row * 0.9 + 0.03 * (col % 5)}, NodeType::Secondary);
+  const NodeIndex index(g, 4.0);
+  for (const Vec2& p : {Vec2{13.3, 17.1}, Vec2{0.0, 0.0}, Vec2{27.2, 35.0}, Vec2{-3.0, 5.0}}) {
+    for (double r : {0.5, 2.0, 6.1, 9.0}) {
+      std::vector<int> seen;
+      EXPECT_FALSE(index.anyWithin(p, r, [&](int k) {
+        seen.push_back(k);
+        return false;
+      }));
+      std::sort(seen.begin(), seen.end());
+      EXPECT_EQ(seen, index.within(p, r)) << p.x << " " << p.y << " r " << r;
+      if (seen.size() < 2) continue;
+      int visits = 0;
+      const int wanted = seen[seen.size() / 2];
+      EXPECT_TRUE(index.anyWithin(p, r, [&](int k) {
+        ++visits;
+        return k == wanted;
+      }));
+      EXPECT_LE(visits, static_cast<int>(seen.size()));
+      int afterHit = 0;
+      bool hit = false;
+      index.anyWithin(p, r, [&](int k) {
+        if (hit) ++afterHit;
+        hit = hit || k == wanted;
+        return k == wanted;
+      });
+      EXPECT_EQ(afterHit, 0);
+    }
+  }
 }
