@@ -352,25 +352,11 @@ class DatasetWriter {
   std::vector<std::string> names_;  ///< the layers written, in order
 };
 
-namespace {
-
-/// writeVectorDataset; with `release` (the same vector as `layers`), each layer's features are freed
-/// as soon as the layer is written.
-void writeDataset(const std::string& path, const std::vector<Layer>& layers,
-                  const VectorWriteOptions& options, std::vector<Layer>* release) {
-  DatasetWriter writer(path, options);
-  for (size_t k = 0; k < layers.size(); ++k) {
-    writer.writeLayer(layers[k]);
-    if (release) std::vector<Feature>().swap((*release)[k].features);
-  }
-  writer.finish();
-}
-
-}  // namespace
-
 void writeVectorDataset(const std::string& path, const std::vector<Layer>& layers,
                         const VectorWriteOptions& options) {
-  writeDataset(path, layers, options, nullptr);
+  DatasetWriter writer(path, options);
+  for (const Layer& layer : layers) writer.writeLayer(layer);
+  writer.finish();
 }
 
 namespace {
@@ -443,23 +429,6 @@ void VectorOutput::write(const std::vector<Layer>& layers, const std::string& cr
   for (const Layer& layer : layers)
     writeVectorDataset((std::filesystem::path(output_->tempPath()) / (layer.name + extension_)).string(),
                        {layer}, options_);
-}
-
-void VectorOutput::writeReleasing(std::vector<Layer>& layers, const std::string& crsWkt) {
-  if (!crsWkt.empty()) options_.crsWkt = crsWkt;
-  if (!layerPerFile_) {
-    writeDataset(output_->tempPath(), layers, options_, &layers);
-    return;
-  }
-  for (Layer& layer : layers) {
-    std::vector<Layer> one(1);
-    one[0].name = layer.name;
-    one[0].geometryType = layer.geometryType;
-    one[0].fields = layer.fields;
-    one[0].features.swap(layer.features);
-    writeDataset((std::filesystem::path(output_->tempPath()) / (layer.name + extension_)).string(), one,
-                 options_, &one);
-  }
 }
 
 LayerStream::LayerStream(VectorOutput& output, std::string crsWkt, bool background)

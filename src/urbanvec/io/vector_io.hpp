@@ -48,9 +48,6 @@ class VectorOutput {
                OutputRules rules);
   /// Writes every layer into the staging place, in `crsWkt` when given (else the options' CRS).
   void write(const std::vector<Layer>& layers, const std::string& crsWkt = {});
-  /// The same, freeing each layer's features once it is written (the layers keep their names and
-  /// fields): a city's layers need not stay in memory beside the file being written.
-  void writeReleasing(std::vector<Layer>& layers, const std::string& crsWkt = {});
   /// Moves the written files into place (AtomicOutput::commit).
   void commit(const Progress& progress = {});
   const std::string& format() const { return options_.format; }
