@@ -11,6 +11,7 @@
 #include "urbanvec/app/grid_input.hpp"
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/core/memory.hpp"
+#include "urbanvec/core/parallel.hpp"
 #include "urbanvec/io/atomic_output.hpp"
 #include "urbanvec/io/vector_io.hpp"
 #include "urbanvec/vectorize/pipeline.hpp"
@@ -476,12 +477,22 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
              << ")\n";
   }
 
+  // Each layer is written as soon as the pipeline has made it final: with more than one worker on a
+  // thread of its own while the later stages compute (roads and road_nodes during C-E, pavement
+  // during the parcel search), with one worker at once, in this thread. The same file either way.
+  const bool runCheck = args.flag("-check");
+  std::vector<Layer> roadLayers;  // copies of roads and road_nodes for -check
+  io::LayerStream stream(out, input.spec.crsWkt, workerCount(options.city.parcels.threads) > 1);
+  const LayerSink sink = [&](Layer&& layer) {
+    if (runCheck && roadLayers.size() < 2) roadLayers.push_back(layer);
+    stream.add(std::move(layer));
+  };
   // The density and parcel grids go once A5 has read them.
-  vectorize::VectorizeResult result = vectorize::vectorizeReleasingInput(input, options, ctx.progress);
+  vectorize::VectorizeResult result = vectorize::vectorizeReleasingInput(input, options, ctx.progress, sink);
   for (const std::string& w : result.warnings) ctx.warn(w);
 
-  if (args.flag("-check")) {
-    const vectorize::RoadNetworkCheck check = vectorize::checkRoadNetwork(result.layers[0], result.layers[1]);
+  if (runCheck) {
+    const vectorize::RoadNetworkCheck check = vectorize::checkRoadNetwork(roadLayers.at(0), roadLayers.at(1));
     const vectorize::RoadCoverageCheck coverage = vectorize::checkRoadCoverage(
         input.landUse, result.cells, result.network, result.cycleRemovedLinks, result.deadEndRemovedLinks);
     if (ctx.out) *ctx.out << "topology: " << check.describe() << "\n" << coverage.describe() << "\n";
@@ -494,18 +505,16 @@ void run(const app::ParsedArgs& args, app::CommandContext& ctx) {
                " cells from every output road");
   }
 
-  // Only the layers, the stage reports and the -debug-stages graphs are needed from here: the rest of
-  // the result (grids, simulated blocks, network, reports per block) goes before the layers are
-  // written, and each layer goes once it is in the file.
-  std::vector<Layer> outputLayers = std::move(result.layers);
+  // Only the stage reports and the -debug-stages graphs are needed from here: the rest of the result
+  // (grids, simulated blocks, network, reports per block) goes before the last layers are written.
   std::vector<vectorize::StageReport> stages = std::move(result.stages);
   std::vector<std::pair<std::string, vectorize::RoadGraph>> stageGraphs = std::move(result.stageGraphs);
   result = vectorize::VectorizeResult();
+  std::vector<Layer>().swap(roadLayers);
   input.landUse = Grid<std::uint8_t>();
   input.openRegions = Grid<std::uint8_t>();
   releaseFreedMemory();
-  out.writeReleasing(outputLayers, input.spec.crsWkt);
-  outputLayers.clear();
+  stream.finish();
   if (debugOut) {
     std::vector<Layer> layers;
     int k = 0;

@@ -63,6 +63,13 @@ for layer in roads blocks spines parcels vectorize_report; do
   b=$(ogrinfo -ro -al -q "$WORK/bubenec2.gpkg" "$layer" | md5sum)
   expect_eq "$a" "$b" "bubenec $layer with 1 vs 2 threads"
 done
+# Layers are listed in the order of CONVENTIONS.md also where some are empty (Bubenec: water and
+# spines), with 1 thread (written as they come) and 2 (written on a thread of their own).
+for out in bubenec bubenec2; do
+  order=$(ogrinfo -ro -q "$WORK/$out.gpkg" | sed -n 's/^[0-9]*: \([a-z_]*\).*/\1/p' | tr '\n' ' ')
+  expect_eq "$order" "roads road_nodes pavement blocks water spines parcels vectorize_report layer_styles " \
+    "$out layer order"
+done
 # A different seed changes the parcels.
 run_cmd vectorize -q -seed 7 -density "$g/density.tif" -parcels "$g/parcels.tif" -parcel-table "$g/parcels.csv" \
   "$g/landuse.tif" "$WORK/bubenec7.gpkg"

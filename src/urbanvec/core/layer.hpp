@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -39,5 +40,9 @@ struct Layer {
     return -1;
   }
 };
+
+/// Takes each output layer of a run as soon as it is final, in output order (a writer can store it
+/// while the run goes on computing the next ones). It may throw (a failed write stops the run).
+using LayerSink = std::function<void(Layer&&)>;
 
 }  // namespace urbanvec

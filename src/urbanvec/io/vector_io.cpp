@@ -236,41 +236,47 @@ std::string vectorFormatFor(const std::string& path, const std::string& requeste
   return "GPKG";
 }
 
-namespace {
+namespace {}  // namespace
 
-/// writeVectorDataset; with `release` (the same vector as `layers`), each layer's features are freed
-/// as soon as the layer is written.
-void writeDataset(const std::string& path, const std::vector<Layer>& layers,
-                  const VectorWriteOptions& options, std::vector<Layer>* release) {
-  const std::string format = vectorFormatFor(path, options.format);
-  GDALDriver* driver = vectorDriver(format);
-  // GeoPackage stamps each table with the time of writing; a fixed stamp keeps the same input and
-  // seed giving byte-identical files (a user's own OGR_CURRENT_DATE wins).
-  if (!CPLGetConfigOption("OGR_CURRENT_DATE", nullptr))
-    CPLSetConfigOption("OGR_CURRENT_DATE", "2026-01-01T00:00:00.000Z");
-  CPLStringList dsco;
-  for (const std::string& kv : options.datasetCreationOptions) dsco.AddString(kv.c_str());
-  CPLErrorReset();
-  DatasetPtr ds(driver->Create(path.c_str(), 0, 0, 0, GDT_Unknown, dsco.List()));
-  if (!ds) throw ioError("cannot create '" + path + "' (" + std::string(lastGdalMessage()) + ")");
-  OGRSpatialReference srs;
-  const bool hasSrs = !options.crsWkt.empty() && srs.importFromWkt(options.crsWkt.c_str()) == OGRERR_NONE;
-  srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-  const bool transactions = ds->TestCapability(ODsCTransactions);
-  if (transactions) ds->StartTransaction();
-  static std::atomic<long> featuresWritten{0};
-  const long failAfter = faultSetting("write-fail-after");
-  for (size_t k = 0; k < layers.size(); ++k) {
-    const Layer& layer = layers[k];
+/// One dataset being written: created (inside one transaction where the driver has them) by the
+/// constructor, then one layer at a time, then finish(). Destroyed unfinished, it closes what it
+/// wrote (the caller's staging is removed).
+class DatasetWriter {
+ public:
+  DatasetWriter(std::string path, const VectorWriteOptions& options)
+      : path_(std::move(path)), options_(options), format_(vectorFormatFor(path_, options.format)) {
+    GDALDriver* driver = vectorDriver(format_);
+    // GeoPackage stamps each table with the time of writing; a fixed stamp keeps the same input and
+    // seed giving byte-identical files (a user's own OGR_CURRENT_DATE wins).
+    if (!CPLGetConfigOption("OGR_CURRENT_DATE", nullptr))
+      CPLSetConfigOption("OGR_CURRENT_DATE", "2026-01-01T00:00:00.000Z");
+    CPLStringList dsco;
+    for (const std::string& kv : options.datasetCreationOptions) dsco.AddString(kv.c_str());
+    CPLErrorReset();
+    ds_.reset(driver->Create(path_.c_str(), 0, 0, 0, GDT_Unknown, dsco.List()));
+    if (!ds_) throw ioError("cannot create '" + path_ + "' (" + std::string(lastGdalMessage()) + ")");
+    hasSrs_ = !options.crsWkt.empty() && srs_.importFromWkt(options.crsWkt.c_str()) == OGRERR_NONE;
+    srs_.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    transactions_ = ds_->TestCapability(ODsCTransactions);
+    if (transactions_) ds_->StartTransaction();
+  }
+
+  /// Writes one layer. `stop`, when set, abandons the writing between features (returns false).
+  bool writeLayer(const Layer& layer, const std::atomic<bool>* stop = nullptr) {
+    static std::atomic<long> featuresWritten{0};
+    const long failAfter = faultSetting("write-fail-after");
     if (const long delay = faultSetting("write-delay-ms"))
-      std::this_thread::sleep_for(std::chrono::milliseconds(delay));
+      for (long slept = 0; slept < delay && !(stop && *stop); slept += 10)
+        std::this_thread::sleep_for(std::chrono::milliseconds(std::min(10L, delay - slept)));
     CPLStringList lco;
-    for (const std::string& kv : options.layerCreationOptions) lco.AddString(kv.c_str());
-    OGRLayer* out = ds->CreateLayer(layer.name.c_str(),
-                                    hasSrs && layer.geometryType != GeometryType::None ? &srs : nullptr,
-                                    ogrType(layer.geometryType), lco.List());
+    for (const std::string& kv : options_.layerCreationOptions) lco.AddString(kv.c_str());
+    OGRLayer* out = ds_->CreateLayer(layer.name.c_str(),
+                                     hasSrs_ && layer.geometryType != GeometryType::None ? &srs_ : nullptr,
+                                     ogrType(layer.geometryType), lco.List());
     if (!out)
-      throw ioError("cannot create layer '" + layer.name + "' in '" + path + "' (" + lastGdalMessage() + ")");
+      throw ioError("cannot create layer '" + layer.name + "' in '" + path_ + "' (" + lastGdalMessage() +
+                    ")");
+    names_.push_back(layer.name);
     for (const FieldDef& f : layer.fields) {
       OGRFieldDefn defn(f.name.c_str(), f.type == FieldType::Integer ? OFTInteger64
                                         : f.type == FieldType::Real  ? OFTReal
@@ -280,6 +286,7 @@ void writeDataset(const std::string& path, const std::vector<Layer>& layers,
     }
     OGRFeatureDefn* defn = out->GetLayerDefn();
     for (const Feature& feature : layer.features) {
+      if (stop && *stop) return false;
       OGRFeature f(defn);
       for (size_t i = 0; i < feature.values.size() && i < layer.fields.size(); ++i) {
         const int idx = static_cast<int>(i);
@@ -309,29 +316,47 @@ void writeDataset(const std::string& path, const std::vector<Layer>& layers,
         throw ioError("cannot write a feature of layer '" + layer.name +
                       "' (fault injected by URBANVEC_FAULT)");
     }
-    if (release) std::vector<Feature>().swap((*release)[k].features);
+    // The layer is complete: GeoPackage builds its spatial index now (it defers the index until the
+    // layer is synced or the dataset closed), so a writer running beside the computation does that
+    // work there too, not all at the end.
+    if (out->SyncToDisk() != OGRERR_NONE)
+      throw ioError("cannot write layer '" + layer.name + "' (" + std::string(lastGdalMessage()) + ")");
+    return true;
   }
-  if (format == "GPKG") {
-    std::map<std::string, std::string> styles = options.layerStylesQml;
-    if (options.defaultStyles)
-      for (const Layer& layer : layers)
-        if (!styles.count(layer.name) && !defaultStyleFor(layer.name).empty())
-          styles[layer.name] = defaultStyleFor(layer.name);
-    writeLayerStyles(*ds, styles);
-  }
-  if (transactions && ds->CommitTransaction() != OGRERR_NONE)
-    throw ioError("cannot write '" + path + "' (" + std::string(lastGdalMessage()) + ")");
-  CPLErrorReset();
-  GDALClose(ds.release());
-  if (CPLGetLastErrorType() >= CE_Failure)
-    throw ioError("cannot finish '" + path + "' (" + std::string(lastGdalMessage()) + ")");
-}
 
-}  // namespace
+  /// The layer styles (GeoPackage), the commit, the close.
+  void finish() {
+    if (format_ == "GPKG") {
+      std::map<std::string, std::string> styles = options_.layerStylesQml;
+      if (options_.defaultStyles)
+        for (const std::string& name : names_)
+          if (!styles.count(name) && !defaultStyleFor(name).empty()) styles[name] = defaultStyleFor(name);
+      writeLayerStyles(*ds_, styles);
+    }
+    if (transactions_ && ds_->CommitTransaction() != OGRERR_NONE)
+      throw ioError("cannot write '" + path_ + "' (" + std::string(lastGdalMessage()) + ")");
+    CPLErrorReset();
+    GDALClose(ds_.release());
+    if (CPLGetLastErrorType() >= CE_Failure)
+      throw ioError("cannot finish '" + path_ + "' (" + std::string(lastGdalMessage()) + ")");
+  }
+
+ private:
+  std::string path_;
+  const VectorWriteOptions& options_;
+  std::string format_;
+  DatasetPtr ds_;
+  OGRSpatialReference srs_;
+  bool hasSrs_ = false;
+  bool transactions_ = false;
+  std::vector<std::string> names_;  ///< the layers written, in order
+};
 
 void writeVectorDataset(const std::string& path, const std::vector<Layer>& layers,
                         const VectorWriteOptions& options) {
-  writeDataset(path, layers, options, nullptr);
+  DatasetWriter writer(path, options);
+  for (const Layer& layer : layers) writer.writeLayer(layer);
+  writer.finish();
 }
 
 namespace {
@@ -406,21 +431,91 @@ void VectorOutput::write(const std::vector<Layer>& layers, const std::string& cr
                        {layer}, options_);
 }
 
-void VectorOutput::writeReleasing(std::vector<Layer>& layers, const std::string& crsWkt) {
-  if (!crsWkt.empty()) options_.crsWkt = crsWkt;
-  if (!layerPerFile_) {
-    writeDataset(output_->tempPath(), layers, options_, &layers);
+LayerStream::LayerStream(VectorOutput& output, std::string crsWkt, bool background)
+    : output_(output), options_(output.options_) {
+  if (!crsWkt.empty()) options_.crsWkt = std::move(crsWkt);
+  if (background) thread_ = std::thread([this] { loop(); });
+}
+
+LayerStream::~LayerStream() {
+  if (thread_.joinable()) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    thread_.join();
+  }
+  dataset_.reset();  // closes an unfinished dataset before the output's staging goes
+}
+
+void LayerStream::write(Layer& layer) {
+  if (output_.layerPerFile_) {
+    DatasetWriter one(
+        (std::filesystem::path(output_.output_->tempPath()) / (layer.name + output_.extension_)).string(),
+        options_);
+    if (one.writeLayer(layer, &stop_)) one.finish();
+  } else {
+    if (!dataset_) dataset_ = std::make_unique<DatasetWriter>(output_.output_->tempPath(), options_);
+    dataset_->writeLayer(layer, &stop_);
+  }
+  std::vector<Feature>().swap(layer.features);
+}
+
+void LayerStream::finishDatasets() {
+  if (output_.layerPerFile_) return;
+  if (!dataset_) dataset_ = std::make_unique<DatasetWriter>(output_.output_->tempPath(), options_);
+  dataset_->finish();
+  dataset_.reset();
+}
+
+void LayerStream::loop() {
+  try {
+    for (;;) {
+      Layer layer;
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        wake_.wait(lock, [this] { return stop_ || finishing_ || !queue_.empty(); });
+        if (stop_) return;
+        if (queue_.empty()) break;  // finishing, and everything is written
+        layer = std::move(queue_.front());
+        queue_.pop_front();
+      }
+      write(layer);
+    }
+    finishDatasets();
+  } catch (...) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    error_ = std::current_exception();
+    queue_.clear();
+  }
+}
+
+void LayerStream::add(Layer&& layer) {
+  if (!thread_.joinable()) {
+    write(layer);
     return;
   }
-  for (Layer& layer : layers) {
-    std::vector<Layer> one(1);
-    one[0].name = layer.name;
-    one[0].geometryType = layer.geometryType;
-    one[0].fields = layer.fields;
-    one[0].features.swap(layer.features);
-    writeDataset((std::filesystem::path(output_->tempPath()) / (layer.name + extension_)).string(), one,
-                 options_, &one);
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (error_) std::rethrow_exception(error_);
+    queue_.push_back(std::move(layer));
   }
+  wake_.notify_all();
+}
+
+void LayerStream::finish() {
+  if (!thread_.joinable()) {
+    finishDatasets();
+    return;
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    finishing_ = true;
+  }
+  wake_.notify_all();
+  thread_.join();
+  if (error_) std::rethrow_exception(error_);
 }
 
 void VectorOutput::commit(const Progress& progress) {

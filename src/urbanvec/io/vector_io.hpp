@@ -1,10 +1,16 @@
 // Reading and writing vector layers with OGR, converting to and from the plain types of core/layer.hpp.
 #pragma once
 
+#include <atomic>
+#include <condition_variable>
+#include <deque>
+#include <exception>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "urbanvec/core/layer.hpp"
@@ -42,19 +48,55 @@ class VectorOutput {
                OutputRules rules);
   /// Writes every layer into the staging place, in `crsWkt` when given (else the options' CRS).
   void write(const std::vector<Layer>& layers, const std::string& crsWkt = {});
-  /// The same, freeing each layer's features once it is written (the layers keep their names and
-  /// fields): a city's layers need not stay in memory beside the file being written.
-  void writeReleasing(std::vector<Layer>& layers, const std::string& crsWkt = {});
   /// Moves the written files into place (AtomicOutput::commit).
   void commit(const Progress& progress = {});
   const std::string& format() const { return options_.format; }
 
  private:
+  friend class LayerStream;
   std::string path_;
   VectorWriteOptions options_;
   bool layerPerFile_ = false;  ///< one dataset per layer inside a folder output
   std::string extension_;      ///< of each per-layer file, with the dot
   std::unique_ptr<AtomicOutput> output_;
+};
+
+class DatasetWriter;
+
+/// Writes a run's layers into a VectorOutput one at a time, as the run makes each final, in the order
+/// they come; each layer's features are freed once written. With `background`, a thread of its own
+/// writes while the caller goes on computing; without, add() writes at once. Both make the same GDAL
+/// calls in the same order, so the same file. Destroyed before finish() (the run failed or was
+/// cancelled), it stops between two features and closes what it wrote, uncommitted; the VectorOutput
+/// then removes its staging as before (destroy the stream first).
+class LayerStream {
+ public:
+  LayerStream(VectorOutput& output, std::string crsWkt, bool background);
+  ~LayerStream();
+  LayerStream(const LayerStream&) = delete;
+  LayerStream& operator=(const LayerStream&) = delete;
+
+  /// Takes the next layer. Throws the error of an earlier layer's writing, if any.
+  void add(Layer&& layer);
+  /// Waits until every layer is written, then finishes the dataset (styles, commit). Throws
+  /// urbanvec::Error when any writing failed. The output still needs VectorOutput::commit().
+  void finish();
+
+ private:
+  void write(Layer& layer);
+  void finishDatasets();
+  void loop();
+
+  VectorOutput& output_;
+  VectorWriteOptions options_;              ///< the output's, with the CRS of this run
+  std::unique_ptr<DatasetWriter> dataset_;  ///< the one dataset of a multi-layer format, once opened
+  std::thread thread_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::deque<Layer> queue_;
+  bool finishing_ = false;
+  std::atomic<bool> stop_{false};
+  std::exception_ptr error_;
 };
 
 struct VectorReadOptions {

@@ -277,8 +277,11 @@ parcels::SimBlockSummary summarizeSimulatedBlocks(const std::vector<int>& simBlo
 
 CityResult vectorizeCity(const RoadNetwork& network, const Grid<std::uint8_t>& cells,
                          const std::vector<SimBlock>& blocks, const std::vector<SimParcel>& simParcels,
-                         const GridSpec& grid, const CityOptions& options, const Progress& progress) {
+                         const GridSpec& grid, const CityOptions& options, const Progress& progress,
+                         const LayerSink& sink) {
   CityResult result;
+  const LayerSink emit =
+      sink ? sink : LayerSink([&result](Layer&& l) { result.layers.push_back(std::move(l)); });
   const Frame frame{grid};
   BlocksOptions blocksOptions = options.blocks;
   blocksOptions.road.threads = options.parcels.threads;  // one thread setting for every parallel stage
@@ -296,6 +299,9 @@ CityResult vectorizeCity(const RoadNetwork& network, const Grid<std::uint8_t>& c
   reportProgress(progress, 0.35, "road frontage");
   std::vector<MultiLineString> facing =
       roadFacingEdges(result.blocks, frame, options.roadFacingTolerance, options.parcels.threads);
+  // Nothing reads the pavement layer after the road frontage: it is final (a writer can store it
+  // while the parcels are searched).
+  emit(std::move(result.blocks.pavement));
   releaseFreedMemory();
   std::vector<parcels::ParcelBlock> parcelBlocks;  // the part 3 input, aligned with blocks.blockInfo
   parcelBlocks.reserve(result.blocks.blockInfo.size());
@@ -393,13 +399,12 @@ CityResult vectorizeCity(const RoadNetwork& network, const Grid<std::uint8_t>& c
           std::int64_t{r.relaxedRules}, r.simPopulation, r.ignoredPopulation, std::int64_t{r.ignoredUses}}});
   }
   // Moved, not copied (an initializer list copies): at city scale each layer is tens of MB.
-  result.layers.reserve(6);
-  result.layers.push_back(std::move(result.blocks.pavement));
-  result.layers.push_back(std::move(result.blocks.blocks));
-  result.layers.push_back(std::move(result.blocks.water));
-  result.layers.push_back(std::move(spines));
-  result.layers.push_back(std::move(parcelLayer));
-  result.layers.push_back(std::move(report));
+  result.blockFeatures = result.blocks.blocks.features.size();
+  emit(std::move(result.blocks.blocks));
+  emit(std::move(result.blocks.water));
+  emit(std::move(spines));
+  emit(std::move(parcelLayer));
+  emit(std::move(report));
   reportProgress(progress, 1.0, "city layers");
   return result;
 }

@@ -41,8 +41,10 @@ struct CityResult {
   /// Stages D6-E6, aligned with blocks.blockInfo; each block's spine and parcel polygons are moved into
   /// `layers` (left empty here: the reports, populations and areas stay).
   parcels::ParcelsResult parcels;
-  /// pavement, blocks, water, spines, parcels, vectorize_report (world coordinates).
+  /// pavement, blocks, water, spines, parcels, vectorize_report (world coordinates); empty when
+  /// vectorizeCity was given a sink.
   std::vector<Layer> layers;
+  std::size_t blockFeatures = 0;  ///< features of the blocks layer
 };
 
 /// The simulated side of one vector block: its matched simulated blocks merged (spec D5).
@@ -52,9 +54,12 @@ parcels::SimBlockSummary summarizeSimulatedBlocks(const std::vector<int>& simBlo
                                                   const Grid<std::uint8_t>& cells);
 
 /// Runs C -> D5 then D6 -> E6 on part 1's output. `cells`, `blocks` and `simParcels` are
-/// VectorizeResult's A2-A5 data; `network` its road network; `grid` the input frame.
+/// VectorizeResult's A2-A5 data; `network` its road network; `grid` the input frame. With a `sink`,
+/// the layers go to it in order as soon as each is final (pavement before D6, the rest at the end)
+/// instead of into `layers`.
 CityResult vectorizeCity(const RoadNetwork& network, const Grid<std::uint8_t>& cells,
                          const std::vector<SimBlock>& blocks, const std::vector<SimParcel>& simParcels,
-                         const GridSpec& grid, const CityOptions& options, const Progress& progress = {});
+                         const GridSpec& grid, const CityOptions& options, const Progress& progress = {},
+                         const LayerSink& sink = {});
 
 }  // namespace urbanvec::vectorize

@@ -131,9 +131,10 @@ bool keepsAllRoads(RoadRemovals removals, const VectorizeInput& input) {
 namespace {
 
 /// The pipeline; `release`, when given, is `input` itself, whose density and parcel grids and parcel
-/// table go once A5 has read them.
+/// table go once A5 has read them. `sink`: see vectorizeReleasingInput.
 VectorizeResult runPipeline(const VectorizeInput& input, VectorizeInput* release,
-                            const VectorizeOptions& options, const Progress& progress) {
+                            const VectorizeOptions& options, const Progress& progress,
+                            const LayerSink& sink) {
   validate(input);
   const InputPopulation population = inputPopulation(input);
   VectorizeResult result;
@@ -166,6 +167,10 @@ VectorizeResult runPipeline(const VectorizeInput& input, VectorizeInput* release
     done = std::min(1.0, done + weight);
     reportProgress(sub, 1.0, name);
   };
+
+  // Each output layer, as soon as it is final: to the sink, or kept in the result.
+  const LayerSink emit =
+      sink ? sink : LayerSink([&result](Layer&& l) { result.layers.push_back(std::move(l)); });
 
   std::size_t roadCells = 0;
   for (std::uint8_t c : input.landUse.cells) roadCells += isRoadCode(c);
@@ -326,7 +331,7 @@ VectorizeResult runPipeline(const VectorizeInput& input, VectorizeInput* release
         drawCurves(result.network, input.landUse, result.cells, options.curveDrawing);
     std::vector<Layer> layers = roadLayers(result.network, input.spec);
     const std::size_t segments = layers[0].features.size();
-    for (Layer& l : layers) result.layers.push_back(std::move(l));
+    for (Layer& l : layers) emit(std::move(l));
     return counts(noded, " crossings noded, ", segments, " road segments, ", restored,
                   " kept unsimplified (touching another), ", uncovering,
                   " simplified less (uncovering a road cell), ", curves.segments, " drawn with curves (",
@@ -341,7 +346,7 @@ VectorizeResult runPipeline(const VectorizeInput& input, VectorizeInput* release
     city.originRow = input.originRow;
     city.blocks.external.undeveloped = options.perimeters;
     result.city = vectorizeCity(result.network, result.cells, result.blocks, result.parcels, input.spec, city,
-                                subProgress(progress, 0.3, 1.0));
+                                subProgress(progress, 0.3, 1.0), emit);
     StageReport report;
     report.id = "C-E";
     report.name = "pavement, blocks, spines, parcels";
@@ -349,14 +354,12 @@ VectorizeResult runPipeline(const VectorizeInput& input, VectorizeInput* release
     report.peakMemoryKb = peakMemoryKb();
     std::size_t parcelCount = 0;
     for (const auto& b : result.city.parcels.blocks) parcelCount += b.parcels.size();
-    report.summary = counts(result.city.layers.at(1).features.size(), " blocks, ", parcelCount, " parcels, ",
+    report.summary = counts(result.city.blockFeatures, " blocks, ", parcelCount, " parcels, ",
                             result.city.blocks.stats.failsafeUses, " failsafe matches (",
                             result.city.blocks.stats.failsafeWithParcels, " with parcels), ",
                             result.city.blocks.stats.overlapUses, " by cell overlap, ",
                             result.city.blocks.stats.underPavement, " left under pavement");
     result.stages.push_back(report);
-    for (Layer& l : result.city.layers) result.layers.push_back(std::move(l));
-    result.city.layers.clear();
     populationWarnings(population, result);
   }
   reportProgress(progress, 1.0, "done");
@@ -367,12 +370,12 @@ VectorizeResult runPipeline(const VectorizeInput& input, VectorizeInput* release
 
 VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& options,
                           const Progress& progress) {
-  return runPipeline(input, nullptr, options, progress);
+  return runPipeline(input, nullptr, options, progress, {});
 }
 
 VectorizeResult vectorizeReleasingInput(VectorizeInput& input, const VectorizeOptions& options,
-                                        const Progress& progress) {
-  return runPipeline(input, &input, options, progress);
+                                        const Progress& progress, const LayerSink& sink) {
+  return runPipeline(input, &input, options, progress, sink);
 }
 
 }  // namespace urbanvec::vectorize

@@ -143,7 +143,11 @@ VectorizeResult vectorize(const VectorizeInput& input, const VectorizeOptions& o
 /// The same run, which also frees `input`'s density and parcel grids and its parcel table once A5 has
 /// read them (8 bytes a cell: on a city-sized grid more than the output). The rest of `input` (spec,
 /// landUse, openRegions) stays for the caller.
+///
+/// With a `sink`, each output layer goes to it as soon as it is final, in the order of
+/// VectorizeResult::layers (roads and road_nodes at the end of F, pavement once E's road frontage has
+/// read it, the rest at the end), instead of into `layers`, which is then left empty.
 VectorizeResult vectorizeReleasingInput(VectorizeInput& input, const VectorizeOptions& options,
-                                        const Progress& progress = {});
+                                        const Progress& progress = {}, const LayerSink& sink = {});
 
 }  // namespace urbanvec::vectorize
