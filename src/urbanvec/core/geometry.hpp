@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cmath>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -57,6 +58,14 @@ inline double distanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b) {
   const double t = len2 > 0.0 ? std::fmax(0.0, std::fmin(1.0, dot(p - a, ab) / len2)) : 0.0;
   return distance(p, a + ab * t);
 }
+
+/// The parameters t in [0, 1] for which a + t·(b − a) lies within distance d of the segment p-q, as
+/// one closed interval {lo, hi}, empty when lo > hi. The points within d of a segment form a convex
+/// stadium (a rectangle 2d wide along p-q and a disc of radius d at each end), which a line meets in
+/// one interval: the union of the line's intervals in the rectangle and in the two discs. An edge
+/// equal to p-q (either way round) gives exactly {0, 1}. A point a = b gives {0, 1} or nothing.
+std::pair<double, double> withinDistanceInterval(const Vec2& a, const Vec2& b, const Vec2& p, const Vec2& q,
+                                                 double d);
 
 /// The even-odd crossing test's step: the edge a-b crosses the ray from p toward +x.
 inline bool edgeCrossesRayRight(const Vec2& a, const Vec2& b, const Vec2& p) {

@@ -1,14 +1,11 @@
 #include "urbanvec/vectorize/city_pipeline.hpp"
 
 #include <algorithm>
-#include <array>
-#include <cmath>
-#include <optional>
 #include <utility>
 
 #include "urbanvec/core/error.hpp"
-#include "urbanvec/core/geos.hpp"
 #include "urbanvec/core/memory.hpp"
+#include "urbanvec/vectorize/road_frontage.hpp"
 #include "urbanvec/vectorize/roads/road_output.hpp"
 
 namespace urbanvec::vectorize {
@@ -45,182 +42,19 @@ struct Frame {
   }
 };
 
-/// An axis-aligned box, compared as GEOS compares envelopes (closed intervals).
-struct Box {
-  double minX = 1e300, minY = 1e300, maxX = -1e300, maxY = -1e300;
-  explicit Box(const Ring& ring) {
-    for (const Vec2& p : ring) {
-      minX = std::min(minX, p.x);
-      minY = std::min(minY, p.y);
-      maxX = std::max(maxX, p.x);
-      maxY = std::max(maxY, p.y);
-    }
-  }
-  Box(double x0, double y0, double x1, double y1) : minX(x0), minY(y0), maxX(x1), maxY(y1) {}
-  Box grown(double d) const { return {minX - d, minY - d, maxX + d, maxY + d}; }
-  bool intersects(const Box& o) const {
-    return !(o.minX > maxX || o.maxX < minX || o.minY > maxY || o.maxY < minY);
-  }
-};
-
-/// Boxes bucketed on a uniform grid: the pieces whose box meets a query box, in index order.
-class BoxIndex {
- public:
-  explicit BoxIndex(const std::vector<Box>& boxes) : boxes_(boxes), extent_(0, 0, 0, 0) {
-    if (boxes.empty()) return;
-    extent_ = boxes.front();
-    for (const Box& b : boxes)
-      extent_ = {std::min(extent_.minX, b.minX), std::min(extent_.minY, b.minY),
-                 std::max(extent_.maxX, b.maxX), std::max(extent_.maxY, b.maxY)};
-    const double w = extent_.maxX - extent_.minX, h = extent_.maxY - extent_.minY;
-    // About one box per bucket on average, and never many more buckets than boxes.
-    const double count = static_cast<double>(boxes.size());
-    cell_ = std::max(std::sqrt(w * h / count), 1e-9);
-    while ((w / cell_ + 1.0) * (h / cell_ + 1.0) > 4.0 * count + 16.0) cell_ *= 1.5;
-    nx_ = static_cast<int>(w / cell_) + 1;
-    ny_ = static_cast<int>(h / cell_) + 1;
-    buckets_.resize(static_cast<size_t>(nx_) * static_cast<size_t>(ny_));
-    for (size_t i = 0; i < boxes.size(); ++i) {
-      const auto [x0, y0, x1, y1] = range(boxes[i]);
-      for (int y = y0; y <= y1; ++y)
-        for (int x = x0; x <= x1; ++x)
-          buckets_[static_cast<size_t>(y) * nx_ + x].push_back(static_cast<int>(i));
-    }
-  }
-  /// Indices of the boxes meeting `q`, increasing; `seen` is scratch space of the caller's thread.
-  void query(const Box& q, std::vector<int>& out, std::vector<int>& seen, int stamp) const {
-    out.clear();
-    if (boxes_.empty() || !q.intersects(extent_)) return;
-    seen.resize(boxes_.size(), -1);
-    const auto [x0, y0, x1, y1] = range(q);
-    for (int y = y0; y <= y1; ++y)
-      for (int x = x0; x <= x1; ++x)
-        for (int i : buckets_[static_cast<size_t>(y) * nx_ + x])
-          if (seen[i] != stamp && boxes_[i].intersects(q)) {
-            seen[i] = stamp;
-            out.push_back(i);
-          }
-    std::sort(out.begin(), out.end());
-  }
-
- private:
-  std::array<int, 4> range(const Box& b) const {
-    auto clampX = [&](double v) {
-      return std::clamp(static_cast<int>(std::floor((v - extent_.minX) / cell_)), 0, nx_ - 1);
-    };
-    auto clampY = [&](double v) {
-      return std::clamp(static_cast<int>(std::floor((v - extent_.minY) / cell_)), 0, ny_ - 1);
-    };
-    return {clampX(b.minX), clampY(b.minY), clampX(b.maxX), clampY(b.maxY)};
-  }
-  const std::vector<Box>& boxes_;
-  Box extent_;
-  double cell_ = 1.0;
-  int nx_ = 0, ny_ = 0;
-  std::vector<std::vector<int>> buckets_;
-};
-
-/// The parts of each block's outline that run along pavement: the road frontage E2 measures. Per
-/// block, the pavement pieces near it (envelope within the envelope of the block buffered by ten
-/// tolerances, and the piece itself within ten tolerances of the block) are buffered together by the
-/// tolerance and cut with the outline. Blocks are independent, so they run on `threads` workers; a
-/// bucket index finds the candidate pieces, and the block's buffer is only computed for the rare
-/// piece whose box ends in the margin where that envelope and the block's bounding box grown by ten
-/// tolerances may disagree.
+/// The road frontage of every block (road_frontage.hpp) from the pavement layer, in cells.
 std::vector<MultiLineString> roadFacingEdges(const BlocksResult& blocks, const Frame& frame, double tolerance,
                                              int threads) {
-  geos::Context ctx;
-  std::vector<geos::GeomPtr> pavement;
-  std::vector<Box> boxes;
-  std::vector<Ring> outlines;  // each piece's outer ring, for the shared-corner test below
+  std::vector<Polygon> pieces;
   for (const Feature& f : blocks.pavement.features) {
-    MultiPolygon parts;
-    if (const auto* p = std::get_if<Polygon>(&f.geometry)) parts.push_back(*p);
-    if (const auto* mp = std::get_if<MultiPolygon>(&f.geometry)) parts = *mp;
-    for (const Polygon& p : parts) {
-      Polygon cells = frame.toCells(p);
-      boxes.emplace_back(cells.outer);
-      pavement.push_back(ctx.polygon(cells));
-      outlines.push_back(std::move(cells.outer));
-    }
+    if (const auto* p = std::get_if<Polygon>(&f.geometry)) pieces.push_back(frame.toCells(*p));
+    if (const auto* mp = std::get_if<MultiPolygon>(&f.geometry))
+      for (const Polygon& p : *mp) pieces.push_back(frame.toCells(p));
   }
-  const BoxIndex index(boxes);
-  const size_t n = blocks.blockInfo.size();
-  std::vector<MultiLineString> out(n);
-  const GeosWorkers workers(threads);
-  std::vector<std::vector<int>> seen(workers.size());
-  std::vector<std::vector<int>> candidates(workers.size());
-  std::vector<std::vector<int>> nears(workers.size());
-  std::vector<std::vector<Vec2>> corners(workers.size());
-  workers.run(n, [&](size_t i, size_t w, const geos::Context& c) {
-    GEOSContextHandle_t h = c.handle();
-    const BlockInfo& info = blocks.blockInfo[i];
-    const Box bounds(info.shape.outer);
-    // GEOS's buffer with one segment per quadrant keeps within 10·tol of the block and reaches at
-    // least cos(45°)·10·tol beyond every extreme vertex; 5 and 11 tolerances leave room for rounding.
-    const Box sure = bounds.grown(5.0 * tolerance);
-    index.query(bounds.grown(11.0 * tolerance), candidates[w], seen[w], static_cast<int>(i));
-    geos::GeomPtr block = c.polygon(info.shape);
-    std::optional<Box> envelope;
-    std::vector<int>& near = nears[w];
-    near.clear();
-    for (int k : candidates[w]) {
-      if (!boxes[k].intersects(sure)) {
-        if (!envelope) {
-          geos::GeomPtr buffered = c.own(GEOSBuffer_r(h, block.get(), tolerance * 10, 1), "block envelope");
-          double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-          GEOSGeom_getXMin_r(h, buffered.get(), &x0);
-          GEOSGeom_getYMin_r(h, buffered.get(), &y0);
-          GEOSGeom_getXMax_r(h, buffered.get(), &x1);
-          GEOSGeom_getYMax_r(h, buffered.get(), &y1);
-          envelope = Box(x0, y0, x1, y1);
-        }
-        if (!boxes[k].intersects(*envelope)) continue;
-      }
-      near.push_back(k);
-    }
-    // Only pieces within ten tolerances of the block can reach its outline with a band one tolerance
-    // wide; the rest only made the band's buffer costlier.
-    // A piece with a corner on a corner of the block is at distance 0: most of them, since the block's
-    // outline is made of the pieces' edges. Only the others need GEOS's distance test.
-    if (!near.empty()) {
-      std::vector<Vec2>& blockCorners = corners[w];
-      blockCorners.assign(info.shape.outer.begin(), info.shape.outer.end());
-      for (const Ring& hole : info.shape.holes)
-        blockCorners.insert(blockCorners.end(), hole.begin(), hole.end());
-      std::sort(blockCorners.begin(), blockCorners.end(), lexicographicLess);
-      auto sharesACorner = [&](int k) {
-        for (const Vec2& p : outlines[static_cast<size_t>(k)])
-          if (std::binary_search(blockCorners.begin(), blockCorners.end(), p, lexicographicLess)) return true;
-        return false;
-      };
-      const GEOSPreparedGeometry* prepared = nullptr;
-      size_t kept = 0;
-      for (int k : near) {
-        bool within = sharesACorner(k);
-        if (!within) {
-          if (!prepared) prepared = GEOSPrepare_r(h, block.get());
-          if (!prepared) throw internalError("GEOS failed to prepare a block: " + c.lastError());
-          // Indexed on the block's segments: GEOSPreparedDistanceWithin compares every pair.
-          within = c.withinDistance(prepared, pavement[static_cast<size_t>(k)].get(), 10.0 * tolerance);
-        }
-        if (within) near[kept++] = k;
-      }
-      near.resize(kept);
-      if (prepared) GEOSPreparedGeom_destroy_r(h, prepared);
-    }
-    if (near.empty()) return;
-    std::vector<geos::GeomPtr> parts;
-    for (int k : near)
-      parts.push_back(c.own(GEOSGeom_clone_r(h, pavement[static_cast<size_t>(k)].get()), "clone"));
-    geos::GeomPtr local = c.collection(GEOS_GEOMETRYCOLLECTION, std::move(parts));
-    geos::GeomPtr band = c.own(GEOSBuffer_r(h, local.get(), tolerance, 2), "pavement band");
-    geos::GeomPtr outline = c.own(GEOSBoundary_r(h, block.get()), "block outline");
-    geos::GeomPtr facing = c.own(GEOSIntersection_r(h, outline.get(), band.get()), "road-facing edges");
-    geos::GeomPtr merged = c.own(GEOSLineMerge_r(h, facing.get()), "road-facing merge");
-    out[i] = c.toLines(merged.get());
-  });
-  return out;
+  std::vector<const Polygon*> outlines;
+  outlines.reserve(blocks.blockInfo.size());
+  for (const BlockInfo& info : blocks.blockInfo) outlines.push_back(&info.shape);
+  return vectorize::roadFacingEdges(std::move(pieces), outlines, tolerance, threads);
 }
 
 /// Rotates a ring to start at its smallest vertex (x, then y), keeping its orientation and closure.
