@@ -63,9 +63,31 @@ struct Segment {
   bool alive;           ///< still in the input (not under a chord kept so far)
 };
 
+/// The work lists of a Simplifier, kept between calls so their memory is reused.
+struct SimplifierLists {
+  static constexpr std::uint32_t kRun = 8;
+  struct Run {
+    Box box;
+    std::uint32_t begin, end;  ///< input[begin, end)
+  };
+  std::vector<Run> runs;
+  std::vector<Segment> input, output;
+  std::vector<std::uint32_t> ringStart;
+};
+
 class Simplifier {
  public:
-  Simplifier(const std::vector<const Ring*>& rings, double tolerance) : rings_(rings), tolerance_(tolerance) {
+  Simplifier(const std::vector<const Ring*>& rings, double tolerance, SimplifierLists& lists)
+      : runs_(lists.runs),
+        rings_(rings),
+        tolerance_(tolerance),
+        input_(lists.input),
+        output_(lists.output),
+        ringStart_(lists.ringStart) {
+    runs_.clear();
+    input_.clear();
+    output_.clear();
+    ringStart_.clear();
     size_t segments = 0;
     for (const Ring* ring : rings) segments += ring->empty() ? 0 : ring->size() - 1;
     input_.reserve(segments);
@@ -87,15 +109,16 @@ class Simplifier {
     }
   }
 
-  Ring simplifyRing(std::uint32_t r) {
+  /// Ring r simplified, into `result` (cleared first).
+  void simplifyRing(std::uint32_t r, Ring& result) {
     ring_ = r;
     const Ring& points = *rings_[r];
-    result_.clear();
+    result_ = &result;
+    result.clear();
     resultSegments_ = 0;
-    if (points.empty()) return {};
+    if (points.empty()) return;
     section(0, points.size() - 1, 0);
-    result_.push_back(points.back());
-    return result_;
+    result.push_back(points.back());
   }
 
  private:
@@ -158,7 +181,7 @@ class Simplifier {
   }
 
   void keep(const Vec2& p) {
-    result_.push_back(p);
+    result_->push_back(p);
     ++resultSegments_;
   }
 
@@ -178,19 +201,16 @@ class Simplifier {
     return false;
   }
 
-  static constexpr std::uint32_t kRun = 8;
-  struct Run {
-    Box box;
-    std::uint32_t begin, end;  ///< input_[begin, end)
-  };
-  std::vector<Run> runs_;
+  static constexpr std::uint32_t kRun = SimplifierLists::kRun;
+  using Run = SimplifierLists::Run;
+  std::vector<Run>& runs_;
 
   const std::vector<const Ring*>& rings_;
   double tolerance_;
-  std::vector<Segment> input_, output_;
-  std::vector<std::uint32_t> ringStart_;
+  std::vector<Segment>&input_, &output_;
+  std::vector<std::uint32_t>& ringStart_;
   std::uint32_t ring_ = 0;
-  Ring result_;
+  Ring* result_ = nullptr;
   size_t resultSegments_ = 0;
 };
 
@@ -219,27 +239,38 @@ bool segmentsMeetInside(const Vec2& p0, const Vec2& p1, const Vec2& q0, const Ve
 }
 
 Polygon simplifyPreservingTopology(const Polygon& polygon, double tolerance) {
-  std::vector<Ring> closed;
-  closed.reserve(1 + polygon.holes.size());
-  auto close = [](const Ring& r) {
-    Ring c = r;
-    if (!c.empty() && c.front() != c.back()) c.push_back(c.front());
-    return c;
-  };
-  closed.push_back(close(polygon.outer));
-  for (const Ring& h : polygon.holes) closed.push_back(close(h));
-  std::vector<const Ring*> rings;
-  for (const Ring& r : closed) rings.push_back(&r);
-  Simplifier simplifier(rings, tolerance);
   Polygon out;
-  for (std::uint32_t r = 0; r < rings.size(); ++r) {
-    Ring s = rings[r]->size() < 4 ? *rings[r] : simplifier.simplifyRing(r);
-    if (r == 0)
-      out.outer = std::move(s);
-    else
-      out.holes.push_back(std::move(s));
-  }
+  simplifyPreservingTopology(polygon, tolerance, out);
   return out;
+}
+
+void simplifyPreservingTopology(const Polygon& polygon, double tolerance, Polygon& out) {
+  // Rings are simplified as closed rings: an open one is closed in a copy, a closed one used as it is.
+  thread_local std::vector<Ring> closed;
+  thread_local std::vector<const Ring*> rings;
+  thread_local SimplifierLists lists;
+  closed.resize(1 + polygon.holes.size());
+  rings.clear();
+  auto add = [&](const Ring& r, Ring& copy) {
+    if (r.empty() || r.front() == r.back()) {
+      rings.push_back(&r);
+      return;
+    }
+    copy.assign(r.begin(), r.end());
+    copy.push_back(r.front());
+    rings.push_back(&copy);
+  };
+  add(polygon.outer, closed[0]);
+  for (size_t h = 0; h < polygon.holes.size(); ++h) add(polygon.holes[h], closed[h + 1]);
+  Simplifier simplifier(rings, tolerance, lists);
+  out.holes.resize(polygon.holes.size());
+  for (std::uint32_t r = 0; r < rings.size(); ++r) {
+    Ring& s = r == 0 ? out.outer : out.holes[r - 1];
+    if (rings[r]->size() < 4)
+      s.assign(rings[r]->begin(), rings[r]->end());
+    else
+      simplifier.simplifyRing(r, s);
+  }
 }
 
 }  // namespace urbanvec

@@ -19,6 +19,9 @@ namespace urbanvec {
 /// crosses itself or another, none collapses below 4 points. Rings with fewer than 4 points are
 /// copied unchanged.
 Polygon simplifyPreservingTopology(const Polygon& polygon, double tolerance);
+/// The same into `out`, whose rings' memory is reused; the work lists are reused per thread (the
+/// parcel search simplifies every new parcel, issue 21).
+void simplifyPreservingTopology(const Polygon& polygon, double tolerance, Polygon& out);
 
 /// True when the closed segments p0p1 and q0q1 share a point other than one common end point of both
 /// (GEOS's "interior intersection": a crossing, an end on the other's interior, a collinear overlap

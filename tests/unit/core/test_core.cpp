@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <vector>
+
 #include "urbanvec/app/command.hpp"
 #include "urbanvec/core/error.hpp"
 #include "urbanvec/core/geometry.hpp"
@@ -156,6 +159,56 @@ TEST(Random, DerivedSeedsDifferPerItemAndAreStable) {
   }
   EXPECT_NEAR(sum / 1000, 0.5, 0.03);
   EXPECT_EQ(unitDraw(5, 3), static_cast<double>(deriveSeed(5, 3) >> 11) / 9007199254740992.0);
+}
+
+namespace {
+/// An engine of 64 random bits that returns given values, for the draws at the ends of the range.
+struct ListEngine {
+  using result_type = std::uint64_t;
+  static constexpr result_type min() { return 0; }
+  static constexpr result_type max() { return ~result_type{0}; }
+  std::vector<result_type> values;
+  size_t next = 0;
+  result_type operator()() { return values[next++ % values.size()]; }
+};
+
+bool sameBits(double a, double b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
+}  // namespace
+
+TEST(Random, DrawsMatchTheStandardDistributionsBitForBit) {
+  // canonicalDraw and NormalDraw replace libstdc++'s generate_canonical and normal_distribution in the
+  // parcel search (issue 21): the output depends on every draw, so they must be the same values.
+  for (const std::uint64_t seed :
+       {std::uint64_t{1}, std::uint64_t{2}, std::uint64_t{12345}, deriveSeed(7, 3)}) {
+    Rng ours(seed), theirs(seed);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (int i = 0; i < 20000; ++i) ASSERT_TRUE(sameBits(canonicalDraw(ours), unit(theirs))) << i;
+    // One distribution for many calls (each second call takes the kept value of the pair) and, as the
+    // split loop does, a new one per attempt with a few calls each.
+    NormalDraw normal(0.5, 1.0 / 6.0);
+    std::normal_distribution<double> standard(0.5, 1.0 / 6.0);
+    for (int i = 0; i < 20000; ++i) ASSERT_TRUE(sameBits(normal(ours), standard(theirs))) << i;
+    for (int attempt = 0; attempt < 5000; ++attempt) {
+      NormalDraw fresh(0.5, 0.2);
+      std::normal_distribution<double> standardFresh(0.5, 0.2);
+      for (int k = 0; k < 1 + attempt % 3; ++k)
+        ASSERT_TRUE(sameBits(fresh(ours), standardFresh(theirs))) << attempt;
+    }
+    EXPECT_EQ(ours(), theirs());  // the same number of engine draws
+  }
+  // The ends: 0, the largest draws (which round to 1 and must give the largest double below 1), and
+  // pairs outside the unit circle that the polar method rejects.
+  const std::vector<std::uint64_t> ends{0, 1, ~0ULL, ~0ULL - 1024, ~0ULL - 2048, 1ULL << 63, 3ULL << 62};
+  ListEngine ours{ends}, theirs{ends};
+  for (size_t i = 0; i < ends.size(); ++i)
+    EXPECT_TRUE(sameBits(canonicalDraw(ours), std::generate_canonical<double, 53>(theirs))) << i;
+  ListEngine circleOurs{{~0ULL, ~0ULL, 0, 0, 1ULL << 62, 3ULL << 61}}, circleTheirs = circleOurs;
+  NormalDraw normal(0.0, 1.0);
+  std::normal_distribution<double> standard(0.0, 1.0);
+  for (int i = 0; i < 4; ++i) EXPECT_TRUE(sameBits(normal(circleOurs), standard(circleTheirs))) << i;
+  EXPECT_EQ(circleOurs.next, circleTheirs.next);
 }
 
 TEST(Arguments, ParsesDefaultsRangesAndUsageErrors) {

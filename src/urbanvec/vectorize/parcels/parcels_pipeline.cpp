@@ -128,22 +128,25 @@ BlockParcels parcelBlock(const ParcelBlock& block, const ParcelsOptions& options
   // One buffer for the try's parcels: copy-assigning the start parcels into it reuses the memory of
   // the last try's polygons (a new vector only after a try became the best and took the buffer).
   std::vector<SubdivisionParcel> parcels;
+  SubdivisionScratch scratch;  // the attempts' children and the spare parcels of earlier tries
   auto runTries = [&](const SplitRules& rules, int tries, int relaxed) {
     int lastImprovement = 0;
     for (int attempt = 0; attempt < tries; ++attempt) {
       if (options.patience > 0 && best.set && best.missing == 0 && best.relaxed == relaxed &&
           attempt - lastImprovement >= options.patience)
         break;
+      for (size_t k = initialParcels.size(); k < parcels.size(); ++k)
+        scratch.spare.push_back(std::move(parcels[k]));
       parcels.assign(initialParcels.begin(), initialParcels.end());
       SplitStats stats;
       int target = std::max(simCount, static_cast<int>(parcels.size()));
-      subdivide(parcels, target, rules, options.regular, frontage, geos, rng, stats);  // E2
+      subdivide(parcels, target, rules, options.regular, frontage, geos, rng, stats, scratch);  // E2
       std::vector<UseParcel> described = useParcels(parcels);
       std::vector<UseChoice> uses = assignLandUse(described, blockArea, model, options.landUse, rng);  // E4
       const int extra = undevelopedExtraParcels(sim, countUndeveloped(uses), options.undeveloped);     // E3
       if (extra > 0) {
         target += extra;
-        subdivide(parcels, target, rules, options.regular, frontage, geos, rng, stats);
+        subdivide(parcels, target, rules, options.regular, frontage, geos, rng, stats, scratch);
         described = useParcels(parcels);
         uses = assignLandUse(described, blockArea, model, options.landUse, rng);
       }

@@ -401,7 +401,17 @@ constexpr std::uint32_t kRunEdges = 8;  ///< edges per run of SplitIndex
 
 SplitIndex buildSplitIndex(const Polygon& polygon) {
   SplitIndex index;
+  buildSplitIndex(polygon, index);
+  return index;
+}
+
+void buildSplitIndex(const Polygon& polygon, SplitIndex& index) {
   index.built = true;
+  index.origin = Vec2{};
+  index.maxAbs = index.maxLocal = index.diagonal = 0.0;
+  index.runs.clear();
+  index.ringRuns.assign(1, 0);
+  index.prefix.clear();
   double minX = 1e300, minY = 1e300, maxX = -1e300, maxY = -1e300;
   auto extend = [&](const Ring& ring) {
     for (const Vec2& p : ring) {
@@ -413,11 +423,14 @@ SplitIndex buildSplitIndex(const Polygon& polygon) {
   };
   extend(polygon.outer);
   for (const Ring& h : polygon.holes) extend(h);
-  if (minX > maxX) return index;
+  if (minX > maxX) return;
   index.origin = {0.5 * (minX + maxX), 0.5 * (minY + maxY)};
   index.maxAbs = std::max({std::fabs(minX), std::fabs(maxX), std::fabs(minY), std::fabs(maxY)});
   index.maxLocal = std::max(maxX - index.origin.x, maxY - index.origin.y) * (1.0 + 1e-12);
   index.diagonal = std::hypot(maxX - minX, maxY - minY);
+  size_t vertices = polygon.outer.size();
+  for (const Ring& h : polygon.holes) vertices += h.size();
+  index.runs.reserve(vertices / kRunEdges + 1 + polygon.holes.size());
   auto addRuns = [&](const Ring& ring) {
     const std::uint32_t n = ring.size() < 2 ? 0 : static_cast<std::uint32_t>(ring.size() - 1);
     for (std::uint32_t first = 0; first < n; first += kRunEdges) {
@@ -446,7 +459,6 @@ SplitIndex buildSplitIndex(const Polygon& polygon) {
   index.prefix.emplace_back();
   for (size_t i = 0; i + 1 < outer.size(); ++i)
     index.prefix.push_back(index.prefix.back() + edgeTerms(outer[i], outer[i + 1], index.origin));
-  return index;
 }
 
 void prepare(SubdivisionParcel& parcel, const RegularSubdivisionOptions& options,
@@ -456,10 +468,12 @@ void prepare(SubdivisionParcel& parcel, const RegularSubdivisionOptions& options
   parcel.aspectKnown = true;
   // GEOS's TopologyPreservingSimplifier rules in plain code (core/topology_simplify.hpp): the same
   // copy without a GEOS geometry and two quadtrees per parcel (issue 21).
-  Polygon simplified;
-  if (options.simplifyTolerance > 0.0)
-    simplified = simplifyPreservingTopology(parcel.polygon, options.simplifyTolerance);
-  if (options.simplifyTolerance <= 0.0 || !(area(simplified) > 0.0)) simplified = parcel.polygon;
+  thread_local Polygon copy;  // its rings' memory serves the next parcel
+  const Polygon* simplified = &parcel.polygon;
+  if (options.simplifyTolerance > 0.0) {
+    simplifyPreservingTopology(parcel.polygon, options.simplifyTolerance, copy);
+    if (area(copy) > 0.0) simplified = &copy;
+  }
   // An edge of the simplified copy faces the road when it runs along road-facing lines, i.e. its
   // quarter points all lie within the simplification tolerance of them.
   const double near = options.simplifyTolerance + options.frontageTolerance;
@@ -477,10 +491,10 @@ void prepare(SubdivisionParcel& parcel, const RegularSubdivisionOptions& options
       if (facing) parcel.roadEdges.push_back({a, b});
     }
   };
-  scanRing(simplified.outer);
-  for (const Ring& h : simplified.holes) scanRing(h);
+  scanRing(simplified->outer);
+  for (const Ring& h : simplified->holes) scanRing(h);
   (void)geos;  // the simplification no longer needs GEOS
-  parcel.index = buildSplitIndex(parcel.polygon);
+  buildSplitIndex(parcel.polygon, parcel.index);
   // The E1 parcels, which every try starts from, measure their edges' road frontage here once; a
   // parcel cut from another inherits its parent's entries.
   if (parcel.cover.empty()) {
@@ -896,9 +910,10 @@ std::optional<SplitVerdict> screenCut(const SubdivisionParcel& parcel, const Cro
   return std::nullopt;
 }
 
-/// Resets a child slot for a new polygon whose area and aspect are known.
-void setChild(SubdivisionParcel& child, Polygon&& polygon, double area, double aspect, bool aspectKnown) {
-  child.polygon = std::move(polygon);
+/// Resets a child slot for a new polygon whose area and aspect are known; `polygon` gets the slot's
+/// old polygon, so its memory serves the next cut.
+void setChild(SubdivisionParcel& child, Polygon& polygon, double area, double aspect, bool aspectKnown) {
+  std::swap(child.polygon, polygon);
   child.area = area;
   child.aspect = aspect;
   child.aspectKnown = aspectKnown;
@@ -912,7 +927,7 @@ void setChild(SubdivisionParcel& child, Polygon&& polygon, double area, double a
 SplitVerdict splitAlong(SubdivisionParcel& parcel, const Vec2& q, const Vec2& dir, const SplitRules& rules,
                         const RoadFrontage& frontage, const geos::Context& geos,
                         std::array<SubdivisionParcel, 2>& out, bool screen) {
-  if (!parcel.index.built) parcel.index = buildSplitIndex(parcel.polygon);
+  if (!parcel.index.built) buildSplitIndex(parcel.polygon, parcel.index);
   if (!parcel.aspectKnown) {
     parcel.aspect = aspectOf(parcel.polygon);
     parcel.aspectKnown = true;
@@ -944,7 +959,7 @@ SplitVerdict splitAlong(SubdivisionParcel& parcel, const Vec2& q, const Vec2& di
         const SplitVerdict verdict = checkChildren(parcel.area, parcel.aspect, children[0], children[1],
                                                    rules, frontageOf, areas, aspects);
         if (verdict == SplitVerdict::Accepted)
-          for (size_t k = 0; k < 2; ++k) setChild(out[k], std::move(children[k]), areas[k], aspects[k], true);
+          for (size_t k = 0; k < 2; ++k) setChild(out[k], children[k], areas[k], aspects[k], true);
         return verdict;
       }
     }
@@ -983,7 +998,7 @@ SplitVerdict splitAlong(SubdivisionParcel& parcel, const Vec2& q, const Vec2& di
   if (verdict == SplitVerdict::Accepted) {
     for (size_t k = 0; k < 2; ++k) {
       const double faceArea = urbanvec::area(faces[k]);
-      setChild(out[k], std::move(faces[k]), faceArea, 1.0, false);
+      setChild(out[k], faces[k], faceArea, 1.0, false);
       out[k].cover.clear();
     }
   }
@@ -1004,7 +1019,7 @@ SplitVerdict trySplit(SubdivisionParcel& parcel, const SplitRules& rules,
   } else {
     edge = std::uniform_int_distribution<size_t>(0, parcel.roadEdges.size() - 1)(rng);
   }
-  std::normal_distribution<double> position(0.5, options.positionSigma);
+  NormalDraw position(0.5, options.positionSigma);  // std::normal_distribution's draws, cheaper
   double t = position(rng);
   for (int i = 0; i < 64 && (t <= 0.0 || t >= 1.0); ++i) t = position(rng);
   if (t <= 0.0 || t >= 1.0) t = 0.5;
@@ -1029,7 +1044,14 @@ SplitVerdict trySplit(SubdivisionParcel& parcel, const SplitRules& rules,
 bool subdivide(std::vector<SubdivisionParcel>& parcels, int target, const SplitRules& rules,
                const RegularSubdivisionOptions& options, const RoadFrontage& frontage,
                const geos::Context& geos, Rng& rng, SplitStats& stats) {
-  std::array<SubdivisionParcel, 2> children;  // reused by every attempt
+  SubdivisionScratch scratch;
+  return subdivide(parcels, target, rules, options, frontage, geos, rng, stats, scratch);
+}
+
+bool subdivide(std::vector<SubdivisionParcel>& parcels, int target, const SplitRules& rules,
+               const RegularSubdivisionOptions& options, const RoadFrontage& frontage,
+               const geos::Context& geos, Rng& rng, SplitStats& stats, SubdivisionScratch& scratch) {
+  std::array<SubdivisionParcel, 2>& children = scratch.children;  // reused by every attempt
   while (static_cast<int>(parcels.size()) < target) {
     size_t largest = 0;
     for (size_t i = 1; i < parcels.size(); ++i)
@@ -1047,8 +1069,15 @@ bool subdivide(std::vector<SubdivisionParcel>& parcels, int target, const SplitR
         continue;
       }
       ++stats.accepted;
-      parcels[index] = std::move(children[0]);
-      parcels.push_back(std::move(children[1]));
+      // Swaps, not moves: the children's slots keep the replaced parcel's and a spare's lists.
+      std::swap(parcels[index], children[0]);
+      if (scratch.spare.empty()) {
+        parcels.push_back(std::move(children[1]));
+      } else {
+        parcels.push_back(std::move(scratch.spare.back()));
+        scratch.spare.pop_back();
+        std::swap(parcels.back(), children[1]);
+      }
       split = true;
     }
     if (!split) return false;

@@ -172,6 +172,8 @@ struct SplitIndex {
   bool built = false;
 };
 SplitIndex buildSplitIndex(const Polygon& polygon);
+/// The same into `index`, whose lists' memory is reused.
+void buildSplitIndex(const Polygon& polygon, SplitIndex& index);
 
 /// A parcel during subdivision, with its simplified copy and road-facing edges computed on first use.
 struct SubdivisionParcel {
@@ -223,10 +225,21 @@ SplitVerdict splitAlong(SubdivisionParcel& parcel, const Vec2& q, const Vec2& di
                         const RoadFrontage& frontage, const geos::Context& geos,
                         std::array<SubdivisionParcel, 2>& out, bool screen = true);
 
+/// Parcels whose memory the split loop reuses (issue 21): the two children of the attempts, and spare
+/// parcels a new parcel takes its lists from (the caller may add the parcels of an earlier try).
+struct SubdivisionScratch {
+  std::array<SubdivisionParcel, 2> children;
+  std::vector<SubdivisionParcel> spare;
+};
+
 /// Splits (largest first, then random parcels) until `target` parcels exist or no acceptable split is
 /// found; returns whether the target was reached.
 bool subdivide(std::vector<SubdivisionParcel>& parcels, int target, const SplitRules& rules,
                const RegularSubdivisionOptions& options, const RoadFrontage& frontage,
                const geos::Context& geos, Rng& rng, SplitStats& stats);
+/// The same with the caller's scratch parcels (the same result).
+bool subdivide(std::vector<SubdivisionParcel>& parcels, int target, const SplitRules& rules,
+               const RegularSubdivisionOptions& options, const RoadFrontage& frontage,
+               const geos::Context& geos, Rng& rng, SplitStats& stats, SubdivisionScratch& scratch);
 
 }  // namespace urbanvec::vectorize::parcels

@@ -193,4 +193,46 @@ TEST_P(RealBlocks, InheritedFrontageEntriesEqualAFreshMeasure) {
   EXPECT_GT(bareEdges, 100);
 }
 
+TEST_P(RealBlocks, ReusedParcelMemoryGivesTheSameSubdivisions) {
+  // The split loop swaps parcels instead of moving them and takes new parcels' lists from spare ones
+  // (issue 21), as the pipeline's tries do with the parcels of the try before: a slot that kept an
+  // old parcel's simplified edges, index or frontage entries must not leak into a new one.
+  geos::Context geos;
+  const std::vector<Polygon> blocks = fixtures::sampleBlocks(GetParam());
+  const SplitRules rules = rulesWith(4.0, 0.2, true);
+  RegularSubdivisionOptions options;
+  int compared = 0, reused = 0;
+  std::uint64_t seed = 1;
+  for (const Polygon& block : blocks) {
+    const RoadFrontage road(geos, halfOfOuterRing(block), 1e-4);
+    SubdivisionParcel start(block);
+    prepare(start, options, road, geos);
+    std::vector<SubdivisionParcel> parcels;
+    SubdivisionScratch scratch;
+    for (int attempt = 0; attempt < 6; ++attempt, ++seed) {
+      Rng plainRng(seed), reusingRng(seed);
+      std::vector<SubdivisionParcel> plain{start};
+      SplitStats plainStats, reusingStats;
+      subdivide(plain, 12, rules, options, road, geos, plainRng, plainStats);
+      reused += static_cast<int>(parcels.size() > 1 ? parcels.size() - 1 : 0);
+      for (size_t k = 1; k < parcels.size(); ++k) scratch.spare.push_back(std::move(parcels[k]));
+      parcels.assign(1, start);
+      subdivide(parcels, 12, rules, options, road, geos, reusingRng, reusingStats, scratch);
+      ASSERT_EQ(parcels.size(), plain.size()) << GetParam();
+      ASSERT_EQ(reusingStats.accepted, plainStats.accepted);
+      for (int v = 0; v < 6; ++v) ASSERT_EQ(reusingStats.rejected[v], plainStats.rejected[v]);
+      for (size_t k = 0; k < plain.size(); ++k) {
+        ASSERT_EQ(parcels[k].polygon.outer, plain[k].polygon.outer) << GetParam() << " parcel " << k;
+        ASSERT_EQ(parcels[k].polygon.holes, plain[k].polygon.holes);
+        ASSERT_EQ(parcels[k].area, plain[k].area);
+        ASSERT_EQ(parcels[k].roadEdges, plain[k].roadEdges);
+        ++compared;
+      }
+      ASSERT_EQ(reusingRng(), plainRng());
+    }
+  }
+  EXPECT_GT(compared, 200);
+  EXPECT_GT(reused, 100);
+}
+
 INSTANTIATE_TEST_SUITE_P(Samples, RealBlocks, ::testing::Values("monaco", "bubenec"));
