@@ -551,8 +551,15 @@ struct CutRecipe {
 /// (such an edge is no crossing, not along the line and not through a vertex at the thresholds
 /// used), so the crossings are those a scan of every edge finds, in the same order. Degenerate cases
 /// are left to GEOS: the line through a vertex or along an edge of any ring.
+/// How clearly findCut's piece is GEOS's (splitAlong's fallback): how much nearer q it is than the next
+/// nearest piece, and how far along the line the nearest other crossing lies from its ends, cells.
+struct CutClearance {
+  double pieceGap = 1e300;
+  double endGap = 1e300;
+};
+
 LineSplit findCut(const Polygon& polygon, const SplitIndex& index, const Vec2& q, const Vec2& dir,
-                  Crossing& a, Crossing& b) {
+                  Crossing& a, Crossing& b, CutClearance* clearance = nullptr) {
   thread_local std::vector<Crossing> crossings;  // reused: one split test per try and parcel
   crossings.clear();
   const double spreadX = std::fabs(dir.y), spreadY = std::fabs(dir.x);
@@ -611,6 +618,18 @@ LineSplit findCut(const Polygon& polygon, const SplitIndex& index, const Vec2& q
     }
   }
   if (crossings[pick + 1].s - crossings[pick].s <= 1e-9) return LineSplit::Degenerate;
+  if (clearance) {
+    *clearance = CutClearance{};
+    for (size_t k = 0; k + 1 < crossings.size(); k += 2) {
+      if (k == pick) continue;
+      const double lo = crossings[k].s, hi = crossings[k + 1].s;
+      const double d = (lo <= 0.0 && hi >= 0.0) ? 0.0 : std::min(std::fabs(lo), std::fabs(hi));
+      clearance->pieceGap = std::min(clearance->pieceGap, d - best);
+    }
+    if (pick > 0) clearance->endGap = crossings[pick].s - crossings[pick - 1].s;
+    if (pick + 2 < crossings.size())
+      clearance->endGap = std::min(clearance->endGap, crossings[pick + 2].s - crossings[pick + 1].s);
+  }
   a = crossings[pick];
   b = crossings[pick + 1];
   if (a.ring != b.ring) return LineSplit::NoSplit;
@@ -910,6 +929,114 @@ std::optional<SplitVerdict> screenCut(const SubdivisionParcel& parcel, const Cro
   return std::nullopt;
 }
 
+/// The verdict splitAlong's GEOS fallback gives a cut a-b from the outer ring to the outer ring that
+/// cutPolygon left to it because a hole touches the outer ring at its first or second vertex (the one
+/// case of the fallback on real blocks, issue 21), when it is certainly a rejection for size,
+/// rectangularity or residential variation; nothing otherwise. The children are cutPolygon's outer
+/// rings with each hole on the side of its vertices off the parent's outer ring. GEOS's faces are the
+/// same regions with their cut points within 1e-9 cells (its noding, or its snap rounding on a 1e-9
+/// grid) and other rings' start and order, so the areas and PCA moments are compared with bounds on
+/// that and on the rounding of both computations (as screenCut's); a piece GEOS could choose
+/// differently, an overshoot that could meet another edge, or a child near the sliver size GEOS drops
+/// leaves the decision to GEOS.
+std::optional<SplitVerdict> touchingHoleVerdict(const SubdivisionParcel& parcel, const Crossing& a,
+                                                const Crossing& b, const CutClearance& clearance,
+                                                const SplitRules& rules, std::array<Polygon, 2>& children) {
+  const Polygon& polygon = parcel.polygon;
+  if (a.ring != 0 || b.ring != 0 || !(clearance.pieceGap > 1e-6) || !(clearance.endGap > 1e-6) ||
+      !(b.s - a.s > 1e-6))
+    return std::nullopt;
+  Ring& first = children[0].outer;  // cutPolygon walked both outer rings before it met the hole
+  children[0].holes.clear();
+  children[1].holes.clear();
+  auto onOuter = [&](const Vec2& v) {
+    return std::find(polygon.outer.begin(), polygon.outer.end(), v) != polygon.outer.end();
+  };
+  for (const Ring& hole : polygon.holes) {
+    // The vertices off the outer ring lie strictly inside one child (none lies on the cut line: findCut
+    // leaves such lines to GEOS); all of them, at least two, must agree.
+    int inFirst = 0, votes = 0;
+    for (size_t k = 0; k + 1 < hole.size(); ++k) {
+      if (onOuter(hole[k])) continue;
+      inFirst += insideRing(hole[k], first);
+      ++votes;
+    }
+    if (votes < 2 || (inFirst != 0 && inFirst != votes)) return std::nullopt;
+    children[inFirst ? 0 : 1].holes.push_back(hole);
+  }
+  const SplitIndex& index = parcel.index;
+  const double unit = 1.12e-16, shift = 1e-9;  // unit roundoff (rounded up); cut points' displacement
+  const double big = index.maxAbs * (1.0 + 1e-12) + index.diagonal, reach = index.diagonal;
+  std::array<double, 2> areas{}, areaMargins{};
+  std::array<double, 2> aspects{}, aspectBounds{};
+  for (size_t k = 0; k < 2; ++k) {
+    const Polygon& child = children[k];
+    double area = 0.0, perimeter = 0.0, sumCross = 0.0, sumProducts = 0.0, vertices = 0.0;
+    std::vector<double> ringAreas;
+    auto addRing = [&](const Ring& ring, bool hole) {
+      const double ringArea = signedArea(ring);
+      ringAreas.push_back(ringArea);
+      area += hole ? -std::fabs(ringArea) : std::fabs(ringArea);
+      vertices += static_cast<double>(ring.size());
+      for (size_t i = 0; i + 1 < ring.size(); ++i) {
+        const Vec2& p = ring[i];
+        const Vec2& q = ring[i + 1];
+        perimeter += distance(p, q);
+        sumCross += std::fabs(cross(p, q));
+        sumProducts += std::fabs(p.x * q.y) + std::fabs(p.y * q.x);
+      }
+    };
+    addRing(child.outer, false);
+    for (const Ring& h : child.holes) addRing(h, true);
+    const double terms = vertices + 8.0;
+    // Either computation's rounding (a sum of `terms` cross products in coordinates up to `big`) plus
+    // the area the displaced cut points and snapped vertices sweep; doubled.
+    areaMargins[k] =
+        2.0 * (2.0 * unit * (sumProducts + (terms + 2.0) * sumCross) + 2.0 * shift * (perimeter + reach));
+    areas[k] = area;
+    if (!(area > 1e-6 * parcel.area + areaMargins[k])) return std::nullopt;  // near GEOS's sliver size
+    const PolygonMoments m = polygonMoments(child, ringAreas.data());
+    const double delta = 2.0 * 2.0 * unit *
+                             ((2.0 * terms + 6.0) * big * big * sumCross / area + 4.0 * big * big +
+                              2.0 * reach * reach * (sumProducts + sumCross) / area) +
+                         4.0 * shift * perimeter * reach * reach / area;
+    const double cos2 = m.sxx - m.syy, sin2 = 2.0 * m.sxy;
+    const double radius = std::sqrt(cos2 * cos2 + sin2 * sin2);
+    aspectBounds[k] = -1.0;
+    if (radius > 8.0 * delta) {
+      const OrientedBox box = orientedBox(child, ringAreas.data());
+      const double turn = 4.0 * delta / (radius - 3.0 * delta) + 1e-13;
+      const double extentError = 2.0 * reach * turn + 32.0 * unit * (big + reach) + 4.0 * shift;
+      if (box.length > 4.0 * extentError) {
+        aspects[k] = box.aspect();
+        aspectBounds[k] = 4.0 * extentError / box.length + 1e-12;
+      }
+    }
+  }
+  // checkChildren's order: size, rectangularity, residential variation (road access is left to GEOS).
+  for (size_t k = 0; k < 2; ++k)
+    if (areas[k] + areaMargins[k] < rules.minArea) return SplitVerdict::TooSmall;
+  for (size_t k = 0; k < 2; ++k)
+    if (!(areas[k] - areaMargins[k] >= rules.minArea)) return std::nullopt;
+  const double parentAspect = parcel.aspect;
+  const bool strict = !(parentAspect >= rules.aspectThreshold);
+  const double limit = rules.compareParentAspect || strict ? parentAspect : rules.aspectThreshold;
+  bool surePass = true;
+  for (size_t k = 0; k < 2; ++k) {
+    if (aspectBounds[k] < 0.0) {
+      surePass = false;
+      continue;
+    }
+    if (aspects[k] + aspectBounds[k] < limit) return SplitVerdict::TooRectangular;
+    if (!(aspects[k] - aspectBounds[k] > limit)) surePass = false;
+  }
+  if (!surePass || !rules.residentialRule) return std::nullopt;
+  const double least = rules.minChildShare * parcel.area;
+  for (size_t k = 0; k < 2; ++k)
+    if (areas[k] + areaMargins[k] < least) return SplitVerdict::UnequalResidential;
+  return std::nullopt;
+}
+
 /// Resets a child slot for a new polygon whose area and aspect are known; `polygon` gets the slot's
 /// old polygon, so its memory serves the next cut.
 void setChild(SubdivisionParcel& child, Polygon& polygon, double area, double aspect, bool aspectKnown) {
@@ -942,7 +1069,8 @@ SplitVerdict splitAlong(SubdivisionParcel& parcel, const Vec2& q, const Vec2& di
   // nearest the sampled point (Q18). Plain code, GEOS in the degenerate cases.
   if (parcel.polygon.outer.size() >= 4) {
     Crossing a{}, b{};
-    const LineSplit cut = findCut(parcel.polygon, parcel.index, q, dir, a, b);
+    CutClearance clearance;
+    const LineSplit cut = findCut(parcel.polygon, parcel.index, q, dir, a, b, &clearance);
     if (cut == LineSplit::NoSplit) return SplitVerdict::BadGeometry;
     if (cut == LineSplit::Split) {
       if (screen && a.ring == 0 && parcel.polygon.holes.empty())
@@ -962,6 +1090,10 @@ SplitVerdict splitAlong(SubdivisionParcel& parcel, const Vec2& q, const Vec2& di
           for (size_t k = 0; k < 2; ++k) setChild(out[k], children[k], areas[k], aspects[k], true);
         return verdict;
       }
+      if (screen)
+        if (const std::optional<SplitVerdict> verdict =
+                touchingHoleVerdict(parcel, a, b, clearance, rules, children))
+          return *verdict;
     }
   }
   double minX = 1e300, minY = 1e300, maxX = -1e300, maxY = -1e300;
