@@ -77,6 +77,14 @@ void RoadFrontage::buildGrid() {
   lastSeen_.assign(segments_.size(), 0);
 }
 
+int RoadFrontage::column(double x) const {
+  return std::clamp(static_cast<int>(std::floor((x - gridOrigin_.x) / cellSize_)), 0, columns_ - 1);
+}
+
+int RoadFrontage::row(double y) const {
+  return std::clamp(static_cast<int>(std::floor((y - gridOrigin_.y) / cellSize_)), 0, rows_ - 1);
+}
+
 void RoadFrontage::segmentsAlong(const Vec2& a, const Vec2& b, double margin) const {
   candidates_.clear();
   if (++query_ == 0) {  // the stamps wrapped around: forget them
@@ -89,12 +97,6 @@ void RoadFrontage::segmentsAlong(const Vec2& a, const Vec2& b, double margin) co
   if (edgeMaxX + margin < gridOrigin_.x || edgeMinX - margin > gridMaxX ||
       edgeMaxY + margin < gridOrigin_.y || edgeMinY - margin > gridMaxY)
     return;
-  auto column = [&](double x) {
-    return std::clamp(static_cast<int>(std::floor((x - gridOrigin_.x) / cellSize_)), 0, columns_ - 1);
-  };
-  auto row = [&](double y) {
-    return std::clamp(static_cast<int>(std::floor((y - gridOrigin_.y) / cellSize_)), 0, rows_ - 1);
-  };
   const int c0 = column(edgeMinX - margin), c1 = column(edgeMaxX + margin);
   const double dx = b.x - a.x;
   for (int c = c0; c <= c1; ++c) {
@@ -234,16 +236,25 @@ double RoadFrontage::longestGeos(const Polygon& parcel) const {
 bool RoadFrontage::within(const Vec2& p, double limit) const {
   if (segments_.empty()) return false;
   // The nearest point of a segment lies in its bounding box, so a box farther than the limit (plus a
-  // margin for the rounding of the projection) cannot hold a segment within it.
+  // margin for the rounding of the projection) cannot hold a segment within it. The cells within that
+  // reach of p are visited directly and the first segment within the limit ends the search (a
+  // segment registered in two of them may be measured twice; issue 21).
   const double reach = limit + 1e-9;
-  segmentsAlong(p, p, reach);
-  for (const std::uint32_t index : candidates_) {
-    const auto& s = segments_[index];
-    if (p.x < std::min(s[0].x, s[1].x) - reach || p.x > std::max(s[0].x, s[1].x) + reach ||
-        p.y < std::min(s[0].y, s[1].y) - reach || p.y > std::max(s[0].y, s[1].y) + reach)
-      continue;
-    if (distanceToSegment(p, s[0], s[1]) <= limit) return true;
-  }
+  if (p.x + reach < gridOrigin_.x || p.x - reach > gridOrigin_.x + columns_ * cellSize_ ||
+      p.y + reach < gridOrigin_.y || p.y - reach > gridOrigin_.y + rows_ * cellSize_)
+    return false;
+  const int c0 = column(p.x - reach), c1 = column(p.x + reach), r0 = row(p.y - reach), r1 = row(p.y + reach);
+  for (int c = c0; c <= c1; ++c)
+    for (int r = r0; r <= r1; ++r) {
+      const size_t cell = static_cast<size_t>(c) * rows_ + r;
+      for (std::uint32_t k = cellStart_[cell]; k < cellStart_[cell + 1]; ++k) {
+        const auto& s = segments_[cellSegments_[k]];
+        if (p.x < std::min(s[0].x, s[1].x) - reach || p.x > std::max(s[0].x, s[1].x) + reach ||
+            p.y < std::min(s[0].y, s[1].y) - reach || p.y > std::max(s[0].y, s[1].y) + reach)
+          continue;
+        if (distanceToSegment(p, s[0], s[1]) <= limit) return true;
+      }
+    }
   return false;
 }
 

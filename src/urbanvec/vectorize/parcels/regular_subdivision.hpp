@@ -99,6 +99,9 @@ class RoadFrontage {
   /// Collects into candidates_ each segment registered in a grid cell that the edge a-b, widened by
   /// `margin`, passes through; a segment appears once.
   void segmentsAlong(const Vec2& a, const Vec2& b, double margin) const;
+  /// The grid column and row of an x or y coordinate, clamped to the grid.
+  int column(double x) const;
+  int row(double y) const;
   void buildGrid();
   const geos::Context& geos_;
   double tolerance_;

@@ -193,6 +193,41 @@ TEST_P(RealBlocks, InheritedFrontageEntriesEqualAFreshMeasure) {
   EXPECT_GT(bareEdges, 100);
 }
 
+TEST_P(RealBlocks, RoadWithinAgreesWithAScanOfEverySegment) {
+  // RoadFrontage::within visits the grid cells near the point and stops at the first segment within
+  // the limit (issue 21): the same answer as measuring every road-facing segment. Points near the
+  // lines, at distances around the limit, near the origin and 4000 cells out.
+  geos::Context geos;
+  std::vector<Polygon> blocks = fixtures::sampleBlocks(GetParam());
+  for (Polygon& far : fixtures::sampleBlocks(GetParam(), 4000.0)) blocks.push_back(std::move(far));
+  Rng rng(3);
+  int near = 0, far = 0;
+  for (const Polygon& block : blocks) {
+    const MultiLineString lines = halfOfOuterRing(block);
+    const RoadFrontage road(geos, lines, 1e-4);
+    const Ring& line = lines.front();
+    std::uniform_int_distribution<size_t> pick(0, line.size() - 2);
+    std::uniform_real_distribution<double> along(0.0, 1.0), offset(-1.5, 1.5);
+    for (int k = 0; k < 400; ++k) {
+      const size_t i = pick(rng);
+      const Vec2 a = line[i], b = line[i + 1];
+      if (a == b) continue;
+      const Vec2 d = (b - a) / distance(a, b);
+      const double limit = k % 2 == 0 ? 0.5001 : 1e-4;
+      // A point off the line by a random amount, or by the limit itself (the boundary case).
+      const double off = k % 4 < 2 ? offset(rng) : (k % 8 < 4 ? limit : -limit);
+      const Vec2 p = a + (b - a) * along(rng) + Vec2{-d.y, d.x} * off;
+      bool scan = false;
+      for (size_t j = 0; j + 1 < line.size(); ++j)
+        if (line[j] != line[j + 1] && distanceToSegment(p, line[j], line[j + 1]) <= limit) scan = true;
+      ASSERT_EQ(road.within(p, limit), scan) << GetParam() << " point " << p.x << " " << p.y;
+      (scan ? near : far) += 1;
+    }
+  }
+  EXPECT_GT(near, 1000);
+  EXPECT_GT(far, 1000);
+}
+
 TEST(TouchingHoles, CutsGEOSWouldJudgeGetItsVerdictWithoutIt) {
   // A hole that touches the outer ring at its first or second vertex leaves cutPolygon unsure of its
   // side, and splitAlong gives the cut to GEOS; a certain rejection is now judged without it (issue 21).
