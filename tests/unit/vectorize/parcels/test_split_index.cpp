@@ -51,6 +51,28 @@ SplitRules rulesWith(double minArea, double aspectThreshold, bool residential) {
   return rules;
 }
 
+/// Rules that accept any split with children of some area.
+SplitRules looseRules() {
+  SplitRules loose;
+  loose.minArea = 0.0;
+  loose.aspectThreshold = 0.0;
+  loose.minFrontage = 0.0;
+  return loose;
+}
+
+/// Whether the plain check (no screen) accepts the cut q-dir of `parcel` under looseRules(), with the
+/// smaller area and aspect of its children.
+bool plainChildren(const SubdivisionParcel& parcel, const Vec2& q, const Vec2& dir, const RoadFrontage& road,
+                   const geos::Context& geos, double& smallest, double& thinnest) {
+  std::array<SubdivisionParcel, 2> children;
+  SubdivisionParcel copy = parcel;
+  if (splitAlong(copy, q, dir, looseRules(), road, geos, children, false) != SplitVerdict::Accepted)
+    return false;
+  smallest = std::min(children[0].area, children[1].area);
+  thinnest = std::min(orientedBox(children[0].polygon).aspect(), orientedBox(children[1].polygon).aspect());
+  return true;
+}
+
 class RealBlocks : public ::testing::TestWithParam<std::string> {};
 
 }  // namespace
@@ -117,16 +139,9 @@ TEST_P(RealBlocks, ThresholdsOneUlpFromTheChildrensValuesGiveThePlainVerdict) {
     if (!parcel.polygon.holes.empty()) continue;  // the screen leaves parcels with holes alone
     for (int k = 0; k < 40; ++k) {
       const auto [q, dir] = randomLine(parcel.polygon, rng);
-      SplitRules loose;
-      loose.minArea = 0.0;
-      loose.aspectThreshold = 0.0;
-      loose.minFrontage = 0.0;
-      std::array<SubdivisionParcel, 2> children;
-      SubdivisionParcel copy = parcel;
-      if (splitAlong(copy, q, dir, loose, road, geos, children, false) != SplitVerdict::Accepted) continue;
-      const double smallest = std::min(children[0].area, children[1].area);
-      const double thinnest =
-          std::min(orientedBox(children[0].polygon).aspect(), orientedBox(children[1].polygon).aspect());
+      const SplitRules loose = looseRules();
+      double smallest = 0.0, thinnest = 0.0;
+      if (!plainChildren(parcel, q, dir, road, geos, smallest, thinnest)) continue;
       for (const double step : {-1.0, 0.0, 1.0}) {
         SplitRules size = loose, shape = loose, share = loose;
         size.minArea = step == 0.0 ? smallest : std::nextafter(smallest, step * 1e300);
@@ -258,16 +273,9 @@ TEST(TouchingHoles, CutsGEOSWouldJudgeGetItsVerdictWithoutIt) {
     prepare(parcel, options, road, geos);
     for (int k = 0; k < 300; ++k) {
       const auto [q, dir] = randomLine(parcel.polygon, rng);
-      SplitRules loose;
-      loose.minArea = 0.0;
-      loose.aspectThreshold = 0.0;
-      loose.minFrontage = 0.0;
-      std::array<SubdivisionParcel, 2> children;
-      SubdivisionParcel copy = parcel;
-      if (splitAlong(copy, q, dir, loose, road, geos, children, false) != SplitVerdict::Accepted) continue;
-      const double smallest = std::min(children[0].area, children[1].area);
-      const double thinnest =
-          std::min(orientedBox(children[0].polygon).aspect(), orientedBox(children[1].polygon).aspect());
+      const SplitRules loose = looseRules();
+      double smallest = 0.0, thinnest = 0.0;
+      if (!plainChildren(parcel, q, dir, road, geos, smallest, thinnest)) continue;
       std::vector<SplitRules> ruleSets;
       for (const double step : {-1.0, 0.0, 1.0}) {
         SplitRules size = loose, shape = loose, share = loose;
