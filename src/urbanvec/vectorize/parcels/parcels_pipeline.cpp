@@ -21,6 +21,12 @@ std::vector<UseParcel> useParcels(const std::vector<SubdivisionParcel>& parcels)
   return out;
 }
 
+/// Whether a parcel's lists hold at most about twice what its polygon needs.
+bool compactLists(const SubdivisionParcel& p) {
+  const size_t vertices = p.polygon.outer.size();
+  return p.polygon.outer.capacity() <= 2 * vertices + 16 && p.index.prefix.capacity() <= 2 * vertices + 16;
+}
+
 int countUndeveloped(const std::vector<UseChoice>& uses) {
   return static_cast<int>(
       std::count_if(uses.begin(), uses.end(), [](const UseChoice& c) { return c.undeveloped; }));
@@ -135,8 +141,11 @@ BlockParcels parcelBlock(const ParcelBlock& block, const ParcelsOptions& options
       if (options.patience > 0 && best.set && best.missing == 0 && best.relaxed == relaxed &&
           attempt - lastImprovement >= options.patience)
         break;
+      // The parcels past the start ones serve the next try as spares, unless a slot's lists grew to a
+      // much larger polygon it held before (the start parcels' copies travel through the slots):
+      // those are freed, so a block keeps few lists of its largest parcels' size.
       for (size_t k = initialParcels.size(); k < parcels.size(); ++k)
-        scratch.spare.push_back(std::move(parcels[k]));
+        if (compactLists(parcels[k])) scratch.spare.push_back(std::move(parcels[k]));
       parcels.assign(initialParcels.begin(), initialParcels.end());
       SplitStats stats;
       int target = std::max(simCount, static_cast<int>(parcels.size()));
@@ -190,7 +199,9 @@ BlockParcels parcelBlock(const ParcelBlock& block, const ParcelsOptions& options
   const PopulationResult population = assignPopulation(described, best.uses, sim);
   for (size_t k = 0; k < best.parcels.size(); ++k) {
     VectorParcel p;
-    p.polygon = std::move(best.parcels[k].polygon);
+    // A copy, not a move: the try's parcels reuse their lists (issue 21), so a ring's capacity can be
+    // that of a larger polygon the slot held before, and the output keeps every parcel to the end.
+    p.polygon = best.parcels[k].polygon;
     p.undeveloped = best.uses[k].undeveloped;
     p.use = best.uses[k].use;
     p.population = population.population[k];
