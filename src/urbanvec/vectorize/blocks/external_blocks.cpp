@@ -97,9 +97,10 @@ ExternalBlocks buildExternalBlocks(const RoadNetwork& network, const MultiPolygo
           bool inside = false;
           if (hasPerimeter) {
             geos::GeomPtr pt = context.point(p);
+            // Context::withinDistance, not GEOSPreparedDistanceWithin: GEOS 3.11 answers the latter
+            // for a prepared line by DistanceOp over every segment of the ring, quadratic in the city.
             inside = GEOSPreparedContains_r(context.handle(), (*copy.prepared)[0], pt.get()) == 1 &&
-                     GEOSPreparedDistanceWithin_r(context.handle(), (*copy.prepared)[1], pt.get(),
-                                                  options.insideTolerance) != 1;
+                     !context.withinDistance((*copy.prepared)[1], pt.get(), options.insideTolerance);
           }
           insideOf[s].push_back(inside);
         }
