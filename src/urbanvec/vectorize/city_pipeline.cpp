@@ -285,7 +285,6 @@ CityResult vectorizeCity(const RoadNetwork& network, const Grid<std::uint8_t>& c
   blocksOptions.water.threads = options.parcels.threads;
   blocksOptions.outline.threads = options.parcels.threads;
   blocksOptions.external.threads = options.parcels.threads;
-  blocksOptions.matching.threads = options.parcels.threads;
   {
     // Only C-D5 read the simulated city (its cell lists take 8 bytes per cell of a block or parcel).
     const SimulatedCity city = simulatedCity(cells, blocks, simParcels);

@@ -52,8 +52,6 @@ struct BlockMatchingOptions {
   /// on) stays unmatched instead of taking the failsafe: it has nothing to place. false = the
   /// documents' failsafe.
   bool leaveBlocksUnderPavement = true;
-  /// Worker threads (0 = all cores). Does not change the output.
-  int threads = 0;
 };
 
 struct BlockMatching {
