@@ -78,12 +78,14 @@ ExternalBlocks buildExternalBlocks(const RoadNetwork& network, const MultiPolygo
     copy.city = ctx.own(GEOSGeom_clone_r(ctx.handle(), city_.get()), "clone");
     copy.ring = ctx.own(GEOSGeom_clone_r(ctx.handle(), ring.get()), "clone");
   }
-  // Worker w's prepared perimeter (0) and ring (1), prepared on its first use.
+  // Worker w's prepared perimeter (0) and, during D3, ring (1), prepared on its first use.
   auto preparedOf = [&](size_t w, const geos::Context& context) -> geos::PreparedGeometries& {
     Perimeter& copy = copies[w];
-    if (!copy.prepared)
-      copy.prepared = std::make_unique<geos::PreparedGeometries>(
-          context, std::vector<const GEOSGeometry*>{copy.city.get(), copy.ring.get()});
+    if (!copy.prepared) {
+      std::vector<const GEOSGeometry*> parts{copy.city.get()};
+      if (copy.ring) parts.push_back(copy.ring.get());
+      copy.prepared = std::make_unique<geos::PreparedGeometries>(context, parts);
+    }
     return *copy.prepared;
   };
   std::vector<std::vector<bool>> insideOf(network.segments.size());
@@ -111,6 +113,9 @@ ExternalBlocks buildExternalBlocks(const RoadNetwork& network, const MultiPolygo
       },
       [&](size_t done) { ticker.tick(done); });
   ticker.finish();
+  // The ring copies and their prepared forms (GEOS's facet index behind Context::withinDistance) are
+  // not needed past D3: freed before the noding, where the stage's memory peaks.
+  for (Perimeter& copy : copies) copy.prepared.reset(), copy.ring.reset();
 
   std::vector<int> perimeterLinesAtNode(network.nodes.size(), 0);
   for (const NetworkSegment& seg : network.segments)
