@@ -62,13 +62,12 @@ ExternalBlocks buildExternalBlocks(const RoadNetwork& network, const MultiPolygo
   geos::GeomPtr ring = ctx.own(GEOSBoundary_r(ctx.handle(), city_.get()), "boundary");
   // Prepared (indexed) geometries: a city's perimeter has as many vertices as its boundary lines have
   // points, so plain GEOS distance and overlay calls per point or per line would grow quadratically.
-  geos::PreparedGeometries preparedCity(ctx, {city_.get(), ring.get()});
-  const GEOSPreparedGeometry* prepared = preparedCity[0];
-  const GEOSPreparedGeometry* preparedRing = preparedCity[1];
+  geos::PreparedGeometries preparedCity(ctx, {ring.get()});
+  const GEOSPreparedGeometry* preparedRing = preparedCity[0];
 
   // D3's inside tests, a prepared point-in-polygon and distance test per node of every boundary line,
-  // on the workers: each prepares its own copy of the perimeter (GEOS prepares lazily, so prepared
-  // geometries are not shared between threads).
+  // and D4's face tests run on the workers: each prepares its own copy of the perimeter (GEOS prepares
+  // lazily, so prepared geometries are not shared between threads).
   const GeosWorkers workers(options.threads);
   struct Perimeter {
     geos::GeomPtr city, ring;
@@ -79,6 +78,16 @@ ExternalBlocks buildExternalBlocks(const RoadNetwork& network, const MultiPolygo
     copy.city = ctx.own(GEOSGeom_clone_r(ctx.handle(), city_.get()), "clone");
     copy.ring = ctx.own(GEOSGeom_clone_r(ctx.handle(), ring.get()), "clone");
   }
+  // Worker w's prepared perimeter (0) and, during D3, ring (1), prepared on its first use.
+  auto preparedOf = [&](size_t w, const geos::Context& context) -> geos::PreparedGeometries& {
+    Perimeter& copy = copies[w];
+    if (!copy.prepared) {
+      std::vector<const GEOSGeometry*> parts{copy.city.get()};
+      if (copy.ring) parts.push_back(copy.ring.get());
+      copy.prepared = std::make_unique<geos::PreparedGeometries>(context, parts);
+    }
+    return *copy.prepared;
+  };
   std::vector<std::vector<bool>> insideOf(network.segments.size());
   const Progress lines = subProgress(progress, 0.0, 0.6);
   ProgressTicker ticker(lines, "external blocks", network.segments.size());
@@ -87,25 +96,26 @@ ExternalBlocks buildExternalBlocks(const RoadNetwork& network, const MultiPolygo
       [&](size_t s, size_t w, const geos::Context& context) {
         const NetworkSegment& seg = network.segments[s];
         if (seg.roadClass != RoadClass::Perimeter || seg.points.size() < 2) return;
-        Perimeter& copy = copies[w];
-        if (!copy.prepared)
-          copy.prepared = std::make_unique<geos::PreparedGeometries>(
-              context, std::vector<const GEOSGeometry*>{copy.city.get(), copy.ring.get()});
+        geos::PreparedGeometries& copy = preparedOf(w, context);
         const LineString nodes =
             options.insideShareSpacing > 0.0 ? densified(seg.points, options.insideShareSpacing) : seg.points;
         for (const Vec2& p : nodes) {
           bool inside = false;
           if (hasPerimeter) {
             geos::GeomPtr pt = context.point(p);
-            inside = GEOSPreparedContains_r(context.handle(), (*copy.prepared)[0], pt.get()) == 1 &&
-                     GEOSPreparedDistanceWithin_r(context.handle(), (*copy.prepared)[1], pt.get(),
-                                                  options.insideTolerance) != 1;
+            // Context::withinDistance, not GEOSPreparedDistanceWithin: GEOS 3.11 answers the latter
+            // for a prepared line by DistanceOp over every segment of the ring, quadratic in the city.
+            inside = GEOSPreparedContains_r(context.handle(), copy[0], pt.get()) == 1 &&
+                     !context.withinDistance(copy[1], pt.get(), options.insideTolerance);
           }
           insideOf[s].push_back(inside);
         }
       },
       [&](size_t done) { ticker.tick(done); });
   ticker.finish();
+  // The ring copies and their prepared forms (GEOS's facet index behind Context::withinDistance) are
+  // not needed past D3: freed before the noding, where the stage's memory peaks.
+  for (Perimeter& copy : copies) copy.prepared.reset(), copy.ring.reset();
 
   std::vector<int> perimeterLinesAtNode(network.nodes.size(), 0);
   for (const NetworkSegment& seg : network.segments)
@@ -164,21 +174,30 @@ ExternalBlocks buildExternalBlocks(const RoadNetwork& network, const MultiPolygo
   const GEOSGeometry* nodedRaw = noded.get();
   geos::GeomPtr faces = ctx.own(GEOSPolygonize_r(ctx.handle(), &nodedRaw, 1), "polygonize");
   reportProgress(progress, 0.7, "external blocks");
-  for (Polygon& face : ctx.toPolygons(faces.get())) {
-    geos::GeomPtr g = ctx.polygon(face);
-    geos::GeomPtr probe = ctx.own(GEOSPointOnSurface_r(ctx.handle(), g.get()), "point on surface");
-    if (hasPerimeter && GEOSPreparedContains_r(ctx.handle(), prepared, probe.get()) == 1) continue;
+  // Each face is classified on its own (its point on surface against the perimeter, then its cell
+  // tally), on the workers; the kept faces go out in face order.
+  std::vector<Polygon> faceList = ctx.toPolygons(faces.get());
+  enum class Face : char { InsidePerimeter, Dropped, Kept };
+  std::vector<Face> verdict(faceList.size(), Face::InsidePerimeter);
+  workers.run(faceList.size(), [&](size_t f, size_t w, const geos::Context& context) {
+    Polygon& face = faceList[f];
+    if (hasPerimeter) {
+      geos::GeomPtr g = context.polygon(face);
+      geos::GeomPtr probe = context.own(GEOSPointOnSurface_r(context.handle(), g.get()), "point on surface");
+      if (GEOSPreparedContains_r(context.handle(), preparedOf(w, context)[0], probe.get()) == 1) return;
+    }
     const CellTally tally = tallyCells(face, blockOfCell, city.grid);
     int externalCells = 0;
     for (const auto& [block, cells] : tally.blocks)
       if (!city.blocks[block].internal) externalCells += cells;
     const int land = tally.cells - tally.road - tally.water;
-    if (externalCells > 0 && externalCells > options.externalCellShare * land) {
-      orientClockwise(face);
-      out.blocks.push_back(std::move(face));
-    } else {
-      ++out.droppedFaces;
-    }
+    verdict[f] =
+        externalCells > 0 && externalCells > options.externalCellShare * land ? Face::Kept : Face::Dropped;
+    if (verdict[f] == Face::Kept) orientClockwise(face);
+  });
+  for (size_t f = 0; f < faceList.size(); ++f) {
+    if (verdict[f] == Face::Kept) out.blocks.push_back(std::move(faceList[f]));
+    out.droppedFaces += verdict[f] == Face::Dropped ? 1 : 0;
   }
   if (options.islandBlocks) addIslandBlocks(ctx, city, blockOfCell, options, out);
   reportProgress(progress, 1.0, "external blocks");

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <map>
 #include <string>
 
@@ -90,34 +91,64 @@ CellTally tallyCells(const Polygon& polygon, const Grid<int>& blockOfCell, const
   const int dx = landUse.frameDx, h = landUse.frameDy + landUse.height;  // a window's frame (issue 22)
   const int rowFirst = std::max(0, static_cast<int>(std::floor(h - 0.5 - maxY)));
   const int rowLast = std::min(landUse.height - 1, static_cast<int>(std::ceil(h - 0.5 - minY)));
-  std::map<int, int> counts;
-  std::vector<double> xs;
-  for (int row = rowFirst; row <= rowLast; ++row) {
-    const double y = h - row - 0.5;
-    xs.clear();
-    auto crossings = [&](const Ring& ring) {
-      for (size_t i = 0; i + 1 < ring.size(); ++i) {
-        const Vec2& a = ring[i];
-        const Vec2& b = ring[i + 1];
-        if ((a.y <= y) != (b.y <= y)) xs.push_back(a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y));
+  if (rowFirst > rowLast) return tally;
+  // The scanline of a row (its cell centres, y = h - row - 0.5) crosses an edge a-b where a and b lie on
+  // either side of it. Each edge visits only the rows its y range spans (one row of slack either way
+  // for rounding; the exact test decides), and the crossings are bucketed by row, counted first and
+  // filled second: a polygon costs its edges plus its crossings, not its rows times its edges (a large
+  // face of a 4096² grid has thousands of rows and a hundred thousand edges).
+  const size_t rows = static_cast<size_t>(rowLast - rowFirst) + 1;
+  auto forEachCrossing = [&](auto&& fn) {
+    auto ring = [&](const Ring& r) {
+      for (size_t i = 0; i + 1 < r.size(); ++i) {
+        const Vec2& a = r[i];
+        const Vec2& b = r[i + 1];
+        if (a.y == b.y) continue;  // never on either side of a scanline
+        const double from = std::max(rowFirst - 1.0, std::floor(h - 0.5 - std::max(a.y, b.y)) - 1.0);
+        const double to = std::min(rowLast + 1.0, std::ceil(h - 0.5 - std::min(a.y, b.y)) + 1.0);
+        for (int row = std::max(rowFirst, static_cast<int>(from));
+             row <= std::min(rowLast, static_cast<int>(to)); ++row) {
+          const double y = h - row - 0.5;
+          if ((a.y <= y) != (b.y <= y))
+            fn(static_cast<size_t>(row - rowFirst), a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y));
+        }
       }
     };
-    crossings(polygon.outer);
-    for (const Ring& hole : polygon.holes) crossings(hole);
-    std::sort(xs.begin(), xs.end());
-    for (size_t k = 0; k + 1 < xs.size(); k += 2) {
-      const int colFirst = std::max(0, static_cast<int>(std::ceil(xs[k] - 0.5)) - dx);
-      const int colLast = std::min(landUse.width - 1, static_cast<int>(std::ceil(xs[k + 1] - 0.5)) - 1 - dx);
+    ring(polygon.outer);
+    for (const Ring& hole : polygon.holes) ring(hole);
+  };
+  std::vector<size_t> start(rows + 1, 0);
+  forEachCrossing([&](size_t k, double) { ++start[k + 1]; });
+  for (size_t k = 0; k < rows; ++k) start[k + 1] += start[k];
+  std::vector<double> xs(start[rows]);
+  std::vector<size_t> next(start.begin(), start.end() - 1);
+  forEachCrossing([&](size_t k, double x) { xs[next[k]++] = x; });
+
+  std::map<int, int> counts;
+  int runBlock = -1, runCells = 0;  // consecutive cells of one block go to the map at once
+  for (size_t k = 0; k < rows; ++k) {
+    const int row = rowFirst + static_cast<int>(k);
+    std::sort(xs.begin() + static_cast<std::ptrdiff_t>(start[k]),
+              xs.begin() + static_cast<std::ptrdiff_t>(start[k + 1]));
+    for (size_t c = start[k]; c + 1 < start[k + 1]; c += 2) {
+      const int colFirst = std::max(0, static_cast<int>(std::ceil(xs[c] - 0.5)) - dx);
+      const int colLast = std::min(landUse.width - 1, static_cast<int>(std::ceil(xs[c + 1] - 0.5)) - 1 - dx);
       for (int col = colFirst; col <= colLast; ++col) {
         ++tally.cells;
         const LandUse use = landUse.at(col, row);
         if (isRoad(use)) ++tally.road;
         if (use == LandUse::Water) ++tally.water;
         const int b = blockOfCell.at(col, row);
-        if (b >= 0) ++counts[b];
+        if (b < 0) continue;
+        if (b != runBlock) {
+          if (runBlock >= 0) counts[runBlock] += runCells;
+          runBlock = b, runCells = 0;
+        }
+        ++runCells;
       }
     }
   }
+  if (runBlock >= 0) counts[runBlock] += runCells;
   for (const auto& [block, cells] : counts) tally.blocks.emplace_back(block, cells);
   std::stable_sort(tally.blocks.begin(), tally.blocks.end(),
                    [](const auto& a, const auto& b) { return a.second > b.second; });

@@ -7,7 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
+#include <cstdint>
 
 #include "urbanvec/core/landuse.hpp"
 #include "urbanvec/core/parallel.hpp"
@@ -101,6 +101,7 @@ PlanarGraph roadPlanarGraph(const RoadGraph& g, const RoadAdjacency& a) {
 std::vector<std::vector<int>> walkFaces(const RoadGraph& g, const RoadAdjacency& a, double maxFaceArea) {
   const PlanarGraph planar = roadPlanarGraph(g, a);
   std::vector<std::vector<int>> faces;
+  std::vector<std::uint8_t> walked(planar.edgeCount(), 0);  // per edge, times this face walks it
   for (const PlanarGraph::Face& face : planar.faces()) {
     const double twiceArea = face.twiceSignedArea;
     // Outer faces of components are clockwise (negative area). A loop that smoothing has collapsed onto
@@ -108,11 +109,11 @@ std::vector<std::vector<int>> walkFaces(const RoadGraph& g, const RoadAdjacency&
     // the walk around a tree has an empty cycle and is dropped below.
     if (twiceArea < -1e-9 || twiceArea > 2 * maxFaceArea) continue;
     // Drop edges walked both ways (dangling branches): what is left is the cycle, in walk order.
-    std::unordered_map<int, int> count;
-    for (int h : face.halfEdges) ++count[PlanarGraph::edgeOf(h)];
+    for (int h : face.halfEdges) ++walked[PlanarGraph::edgeOf(h)];
     std::vector<int> cycle;
     for (int h : face.halfEdges)
-      if (count[PlanarGraph::edgeOf(h)] == 1) cycle.push_back(planar.origin(h));
+      if (walked[PlanarGraph::edgeOf(h)] == 1) cycle.push_back(planar.origin(h));
+    for (int h : face.halfEdges) walked[PlanarGraph::edgeOf(h)] = 0;
     if (cycle.size() >= 3) faces.push_back(std::move(cycle));
   }
   return faces;

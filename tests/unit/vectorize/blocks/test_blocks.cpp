@@ -567,3 +567,59 @@ TEST(BlockMatching, CentreInASliverGivesWayToTheBlockHoldingMostCells) {
   EXPECT_EQ(d.vectorBlockOfSim[0], 0);
   EXPECT_EQ(d.rule[0], MatchRule::Centre);
 }
+
+TEST(WaterSplit, TallyCellsCountsTheCellCentresOfTheEvenOddInterior) {
+  // Random rings (star-shaped outlines with many vertices, holes, long thin spikes) on a window of a
+  // larger raster (frame offsets), against the even-odd crossing count of every cell centre.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const int w = 40, h = 30;
+  Grid<LandUse> landUse(w, h, LandUse::Residential);
+  Grid<int> blockOfCell(w, h, -1);
+  landUse.frameDx = blockOfCell.frameDx = 7;
+  landUse.frameDy = blockOfCell.frameDy = 5;
+  const LandUse uses[4] = {LandUse::Residential, LandUse::SecondaryRoad, LandUse::Water, LandUse::Unused};
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c) {
+      landUse.at(c, r) = uses[rng() % 4];
+      blockOfCell.at(c, r) = rng() % 3 == 0 ? -1 : static_cast<int>((c / 6) + 7 * (r / 5));
+    }
+  auto star = [&](Vec2 centre, double radius, int n) {
+    Ring ring;
+    for (int i = 0; i < n; ++i) {
+      const double a = 6.283185307179586 * i / n;
+      const double rr = radius * (i % 11 == 0 ? 1.0 : 0.3 + 0.7 * unit(rng));
+      ring.push_back(centre + Vec2{std::cos(a), std::sin(a)} * rr);
+    }
+    ring.push_back(ring.front());
+    return ring;
+  };
+  int nonEmpty = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    const Vec2 centre{7 + w * unit(rng), 5 + h * unit(rng)};
+    Polygon p{star(centre, 4.0 + 25.0 * unit(rng), 5 + static_cast<int>(rng() % 300)), {}};
+    for (int k = 0; k < trial % 3; ++k) p.holes.push_back(star(centre + Vec2{unit(rng), unit(rng)}, 3.0, 12));
+    CellTally want;
+    std::map<int, int> blocks;
+    for (int r = 0; r < h; ++r)
+      for (int c = 0; c < w; ++c) {
+        const Vec2 centreOfCell{7 + c + 0.5, 5 + h - r - 0.5};
+        bool inside = ringContains(p.outer, centreOfCell);
+        for (const Ring& hole : p.holes) inside ^= ringContains(hole, centreOfCell);
+        if (!inside) continue;
+        ++want.cells;
+        want.road += isRoad(landUse.at(c, r)) ? 1 : 0;
+        want.water += landUse.at(c, r) == LandUse::Water ? 1 : 0;
+        if (blockOfCell.at(c, r) >= 0) ++blocks[blockOfCell.at(c, r)];
+      }
+    const CellTally got = tallyCells(p, blockOfCell, landUse);
+    EXPECT_EQ(got.cells, want.cells) << trial;
+    EXPECT_EQ(got.road, want.road) << trial;
+    EXPECT_EQ(got.water, want.water) << trial;
+    const std::map<int, int> gotBlocks(got.blocks.begin(), got.blocks.end());
+    EXPECT_EQ(gotBlocks, blocks) << trial;
+    for (size_t k = 1; k < got.blocks.size(); ++k) EXPECT_GE(got.blocks[k - 1].second, got.blocks[k].second);
+    nonEmpty += want.cells > 0 ? 1 : 0;
+  }
+  EXPECT_GT(nonEmpty, 20);
+}
