@@ -32,6 +32,14 @@ GeomPtr Context::own(GEOSGeometry* g, const char* what) const {
 
 GeomPtr Context::point(const Vec2& p) const { return own(GEOSGeom_createPointFromXY_r(handle_, p.x, p.y), "point"); }
 
+bool Context::withinDistance(const GEOSPreparedGeometry* prepared, const GEOSGeometry* g,
+                             double distance) const {
+  double measured = 0.0;
+  if (GEOSPreparedDistance_r(handle_, prepared, g, &measured) != 1)
+    throw internalError("GEOS failed to measure a distance: " + lastError_);
+  return measured <= distance;
+}
+
 GeomPtr Context::lineString(const LineString& line) const {
   return own(GEOSGeom_createLineString_r(handle_, sequence(handle_, line, false)), "lineString");
 }

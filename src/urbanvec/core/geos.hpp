@@ -49,6 +49,12 @@ class Context {
   MultiLineString toLines(const GEOSGeometry* g) const;
   LineString coordinates(const GEOSGeometry* lineOrRing) const;
 
+  /// Whether `g` is within `distance` of the prepared geometry (at distance 0 when one holds a point of
+  /// the other): GEOSPreparedDistanceWithin's answer, but for a prepared polygon or line GEOS 3.11
+  /// answers that one by DistanceOp over every pair of segments, while the prepared distance indexes the
+  /// prepared geometry's segments (IndexedFacetDistance) and finds the same minimum.
+  bool withinDistance(const GEOSPreparedGeometry* prepared, const GEOSGeometry* g, double distance) const;
+
   /// Last error GEOS reported on this context.
   const std::string& lastError() const { return lastError_; }
 

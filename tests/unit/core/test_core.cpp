@@ -256,3 +256,54 @@ TEST(Geos, RoundTripsPolygonWithHoleAndComputesArea) {
   EXPECT_DOUBLE_EQ(area(back[0]), 96.0);
   EXPECT_EQ(back[0].outer.size(), 5u);  // closed
 }
+
+// Context::withinDistance stands in for GEOSPreparedDistanceWithin (D3's inside test against the
+// perimeter ring, issue 21): the same answer for pieces apart, touching, at exactly the distance, inside
+// the prepared polygon, inside its hole, and around it; and for points near a prepared ring.
+TEST(Geos, WithinDistanceAgreesWithPreparedDistanceWithin) {
+  geos::Context ctx;
+  GEOSContextHandle_t h = ctx.handle();
+  const Polygon block{{{0, 0}, {10, 0}, {10, 10}, {0, 10}}, {{{4, 4}, {4, 6}, {6, 6}, {6, 4}}}};
+  geos::GeomPtr g = ctx.polygon(block);
+  const GEOSPreparedGeometry* prepared = GEOSPrepare_r(h, g.get());
+  ASSERT_NE(prepared, nullptr);
+  auto square = [](double x, double y, double s) {
+    return Polygon{{{x, y}, {x + s, y}, {x + s, y + s}, {x, y + s}}, {}};
+  };
+  struct Case {
+    Polygon piece;
+    bool within;
+  };
+  const std::vector<Case> cases = {
+      {square(13, 0, 1), true},                                           // 3 apart, exactly the distance
+      {square(13.001, 0, 1), false},                                      // just beyond
+      {square(10, 2, 1), true},                                           // touching
+      {square(1, 1, 1), true},                                            // inside the block
+      {square(4.5, 4.5, 1), false},                                       // in the hole, 0.5 from it: > 0.4
+      {Polygon{{{-20, -20}, {30, -20}, {30, 30}, {-20, 30}}, {}}, true},  // around the block
+      {Polygon{{{-20, -20}, {30, -20}, {30, 30}, {-20, 30}}, {{{-5, -5}, {-5, 15}, {15, 15}, {15, -5}}}},
+       false},  // the block in its hole, 5 away
+  };
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const double d = i == 4 ? 0.4 : 3.0;
+    geos::GeomPtr piece = ctx.polygon(cases[i].piece);
+    EXPECT_EQ(GEOSPreparedDistanceWithin_r(h, prepared, piece.get(), d) == 1, cases[i].within)
+        << "case " << i;
+    EXPECT_EQ(ctx.withinDistance(prepared, piece.get(), d), cases[i].within) << "case " << i;
+  }
+  GEOSPreparedGeom_destroy_r(h, prepared);
+  // D3 asks it of points against the prepared boundary ring of the perimeter.
+  geos::GeomPtr ring = ctx.own(GEOSBoundary_r(h, g.get()), "boundary");
+  const GEOSPreparedGeometry* preparedRing = GEOSPrepare_r(h, ring.get());
+  ASSERT_NE(preparedRing, nullptr);
+  const std::vector<std::pair<Vec2, double>> points = {{{5, 5}, 1.0},   {{5, 5}, 0.99},   {{5, 3}, 1.0},
+                                                       {{5, 3}, 0.999}, {{12, 12}, 2.83}, {{12, 12}, 2.82},
+                                                       {{0, 0}, 0.0}};
+  for (const auto& [p, d] : points) {
+    geos::GeomPtr pt = ctx.point(p);
+    EXPECT_EQ(ctx.withinDistance(preparedRing, pt.get(), d),
+              GEOSPreparedDistanceWithin_r(h, preparedRing, pt.get(), d) == 1)
+        << p.x << " " << p.y << " " << d;
+  }
+  GEOSPreparedGeom_destroy_r(h, preparedRing);
+}
