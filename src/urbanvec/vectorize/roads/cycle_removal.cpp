@@ -9,9 +9,9 @@
 #include <cmath>
 #include <cstdint>
 
+#include "urbanvec/core/error.hpp"
 #include "urbanvec/core/landuse.hpp"
 #include "urbanvec/core/parallel.hpp"
-#include "urbanvec/core/planar_graph.hpp"
 #include "urbanvec/vectorize/roads/road_checks.hpp"
 #include "urbanvec/vectorize/vectorize_input.hpp"
 
@@ -77,43 +77,57 @@ bool enclosesDevelopedLand(const RoadGraph& g, const std::vector<int>& face,
   return false;
 }
 
-/// The road-only graph as a planar graph with the road graph's node ids and clockwise link order.
-PlanarGraph roadPlanarGraph(const RoadGraph& g, const RoadAdjacency& a) {
-  PlanarGraph planar;
-  for (const RoadNode& n : g.nodes) planar.addNode(n.p);
-  std::vector<std::int32_t> edgeOfLink(a.to.size(), -1);
-  for (size_t i = 0; i + 1 < a.offsets.size(); ++i)
+/// Walks all faces of the embedding the clockwise-sorted links give, as PlanarGraph::faces does (nodes in
+/// index order, each node's links in rotation order, the leftmost turn at every node, the same shoelace
+/// terms in the same order), but on the adjacency lists themselves: building a PlanarGraph of the whole
+/// road graph (a polyline per link, a rotation per node) cost more than the walk (issue 21). Returns, per
+/// face of twice signed area in [-1e-9, 2 maxFaceArea], its cycle as a node sequence.
+std::vector<std::vector<int>> walkFaces(const RoadGraph& g, const RoadAdjacency& a, double maxFaceArea) {
+  const std::size_t slots = a.to.size();
+  std::vector<std::int32_t> originOf(slots), twin(slots, -1);
+  for (std::size_t i = 0; i + 1 < a.offsets.size(); ++i)
     for (int k = a.offsets[i]; k < a.offsets[i + 1]; ++k) {
+      originOf[k] = static_cast<std::int32_t>(i);
       const int j = a.to[k];
       if (static_cast<int>(i) >= j) continue;
-      const int e = planar.addEdge(static_cast<int>(i), j);
-      edgeOfLink[k] = e;
       for (int back = a.offsets[j]; back < a.offsets[j + 1]; ++back)
-        if (a.to[back] == static_cast<int>(i)) edgeOfLink[back] = e;
+        if (a.to[back] == static_cast<int>(i)) {
+          twin[k] = back;
+          twin[back] = k;
+        }
     }
-  for (size_t i = 0; i + 1 < a.offsets.size(); ++i)
-    if (a.offsets[i + 1] > a.offsets[i])
-      planar.setRotation(static_cast<int>(i), std::vector<int>(edgeOfLink.begin() + a.offsets[i],
-                                                               edgeOfLink.begin() + a.offsets[i + 1]));
-  return planar;
-}
-
-std::vector<std::vector<int>> walkFaces(const RoadGraph& g, const RoadAdjacency& a, double maxFaceArea) {
-  const PlanarGraph planar = roadPlanarGraph(g, a);
+  for (std::size_t k = 0; k < slots; ++k)
+    if (twin[k] < 0) throw internalError("cycle removal: a road link is not listed at both of its ends");
+  auto linkOf = [&](int slot) { return std::min(slot, twin[slot]); };
+  std::vector<char> done(slots, 0);
+  std::vector<std::uint8_t> walked(slots, 0);  // per link (its lower slot), times this face walks it
+  std::vector<int> face;
   std::vector<std::vector<int>> faces;
-  std::vector<std::uint8_t> walked(planar.edgeCount(), 0);  // per edge, times this face walks it
-  for (const PlanarGraph::Face& face : planar.faces()) {
-    const double twiceArea = face.twiceSignedArea;
+  for (std::size_t first = 0; first < slots; ++first) {
+    if (done[first]) continue;
+    face.clear();
+    double twiceArea = 0.0;
+    for (int h = static_cast<int>(first); !done[h];) {
+      done[h] = 1;
+      face.push_back(h);
+      const Vec2& from = g.nodes[originOf[h]].p;
+      const Vec2& to = g.nodes[a.to[h]].p;
+      twiceArea += from.x * to.y - to.x * from.y;
+      // Leftmost turn: at v, the link after v->u clockwise keeps the face on the left.
+      const int v = a.to[h];
+      const int degree = a.offsets[v + 1] - a.offsets[v];
+      h = a.offsets[v] + (twin[h] - a.offsets[v] + 1) % degree;
+    }
     // Outer faces of components are clockwise (negative area). A loop that smoothing has collapsed onto
     // a line encloses (almost) nothing but is still a cycle, so faces of about zero area count too;
     // the walk around a tree has an empty cycle and is dropped below.
     if (twiceArea < -1e-9 || twiceArea > 2 * maxFaceArea) continue;
-    // Drop edges walked both ways (dangling branches): what is left is the cycle, in walk order.
-    for (int h : face.halfEdges) ++walked[PlanarGraph::edgeOf(h)];
+    // Drop links walked both ways (dangling branches): what is left is the cycle, in walk order.
+    for (int h : face) ++walked[linkOf(h)];
     std::vector<int> cycle;
-    for (int h : face.halfEdges)
-      if (walked[PlanarGraph::edgeOf(h)] == 1) cycle.push_back(planar.origin(h));
-    for (int h : face.halfEdges) walked[PlanarGraph::edgeOf(h)] = 0;
+    for (int h : face)
+      if (walked[linkOf(h)] == 1) cycle.push_back(originOf[h]);
+    for (int h : face) walked[linkOf(h)] = 0;
     if (cycle.size() >= 3) faces.push_back(std::move(cycle));
   }
   return faces;

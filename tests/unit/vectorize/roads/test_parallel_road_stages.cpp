@@ -5,10 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <map>
 #include <string>
 
+#include "urbanvec/core/planar_graph.hpp"
 #include "urbanvec/io/raster_io.hpp"
 #include "urbanvec/vectorize/pipeline.hpp"
+#include "urbanvec/vectorize/roads/cycle_removal.hpp"
 
 using namespace urbanvec;
 using namespace urbanvec::vectorize;
@@ -63,6 +66,55 @@ TEST_P(ParallelRoadStages, EveryGraphStageAndTheNetworkEqualOneThreadsBitForBit)
       EXPECT_TRUE(same) << "road segment " << s << ", " << threads << " threads";
     }
   }
+}
+
+/// B4's bounded faces as the stage found them before issue 21 walked the adjacency lists directly: a
+/// PlanarGraph of the road links with the graph's link order as rotation, its faces, the same area
+/// filter, the links walked both ways dropped.
+std::vector<std::vector<int>> planarGraphFaces(const RoadGraph& g) {
+  PlanarGraph planar;
+  for (const RoadNode& n : g.nodes) planar.addNode(n.p);
+  auto roadNode = [&](std::size_t i) { return g.nodes[i].alive && g.nodes[i].type != NodeType::Perimeter; };
+  std::map<std::pair<int, int>, int> edgeOf;
+  for (std::size_t i = 0; i < g.nodes.size(); ++i)
+    if (roadNode(i))
+      for (int j : g.nodes[i].links)
+        if (g.nodes[j].type != NodeType::Perimeter && static_cast<int>(i) < j)
+          edgeOf[{static_cast<int>(i), j}] = planar.addEdge(static_cast<int>(i), j);
+  for (std::size_t i = 0; i < g.nodes.size(); ++i) {
+    if (!roadNode(i)) continue;
+    std::vector<int> rotation;
+    for (int j : g.nodes[i].links)
+      if (g.nodes[j].type != NodeType::Perimeter)
+        rotation.push_back(edgeOf.at({std::min(static_cast<int>(i), j), std::max(static_cast<int>(i), j)}));
+    if (!rotation.empty()) planar.setRotation(static_cast<int>(i), rotation);
+  }
+  std::vector<std::vector<int>> out;
+  std::vector<int> walked(planar.edgeCount(), 0);
+  for (const PlanarGraph::Face& face : planar.faces()) {
+    if (face.twiceSignedArea < -1e-9 || face.twiceSignedArea > 2e300) continue;
+    for (int h : face.halfEdges) ++walked[PlanarGraph::edgeOf(h)];
+    std::vector<int> cycle;
+    for (int h : face.halfEdges)
+      if (walked[PlanarGraph::edgeOf(h)] == 1) cycle.push_back(planar.origin(h));
+    for (int h : face.halfEdges) walked[PlanarGraph::edgeOf(h)] = 0;
+    if (cycle.size() >= 3) out.push_back(std::move(cycle));
+  }
+  return out;
+}
+
+// B4 (and F's loop removal) walk the faces on the adjacency lists (issue 21): the same faces, in the same
+// order, from the same start node, as the PlanarGraph walk gave, on every graph stage of the samples.
+TEST_P(ParallelRoadStages, FaceWalkOnTheAdjacencyEqualsThePlanarGraphWalk) {
+  const VectorizeResult one = roadStages(GetParam(), 1);
+  ASSERT_FALSE(one.stageGraphs.empty());
+  std::size_t total = 0;
+  for (const auto& [stage, graph] : one.stageGraphs) {
+    const std::vector<std::vector<int>> faces = boundedRoadFaces(graph);
+    EXPECT_EQ(faces, planarGraphFaces(graph)) << stage;
+    total += faces.size();
+  }
+  EXPECT_GT(total, GetParam() == "monaco" ? 1000u : 20u);
 }
 
 INSTANTIATE_TEST_SUITE_P(Samples, ParallelRoadStages, ::testing::Values("monaco", "bubenec"));
