@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -44,5 +45,11 @@ struct Layer {
 /// Takes each output layer of a run as soon as it is final, in output order (a writer can store it
 /// while the run goes on computing the next ones). It may throw (a failed write stops the run).
 using LayerSink = std::function<void(Layer&&)>;
+
+/// `sink`, or, when it is empty, a sink that appends each layer to `layers`.
+inline LayerSink sinkOrAppend(const LayerSink& sink, std::vector<Layer>& layers) {
+  if (sink) return sink;
+  return [&layers](Layer&& layer) { layers.push_back(std::move(layer)); };
+}
 
 }  // namespace urbanvec

@@ -236,8 +236,6 @@ std::string vectorFormatFor(const std::string& path, const std::string& requeste
   return "GPKG";
 }
 
-namespace {}  // namespace
-
 /// One dataset being written: created (inside one transaction where the driver has them) by the
 /// constructor, then one layer at a time, then finish(). Destroyed unfinished, it closes what it
 /// wrote (the caller's staging is removed).
@@ -426,9 +424,15 @@ void VectorOutput::write(const std::vector<Layer>& layers, const std::string& cr
     writeVectorDataset(output_->tempPath(), layers, options_);
     return;
   }
-  for (const Layer& layer : layers)
-    writeVectorDataset((std::filesystem::path(output_->tempPath()) / (layer.name + extension_)).string(),
-                       {layer}, options_);
+  for (const Layer& layer : layers) {
+    DatasetWriter one(layerFile(layer.name), options_);
+    one.writeLayer(layer);
+    one.finish();
+  }
+}
+
+std::string VectorOutput::layerFile(const std::string& layer) const {
+  return (std::filesystem::path(output_->tempPath()) / (layer + extension_)).string();
 }
 
 LayerStream::LayerStream(VectorOutput& output, std::string crsWkt, bool background)
@@ -451,9 +455,7 @@ LayerStream::~LayerStream() {
 
 void LayerStream::write(Layer& layer) {
   if (output_.layerPerFile_) {
-    DatasetWriter one(
-        (std::filesystem::path(output_.output_->tempPath()) / (layer.name + output_.extension_)).string(),
-        options_);
+    DatasetWriter one(output_.layerFile(layer.name), options_);
     if (one.writeLayer(layer, &stop_)) one.finish();
   } else {
     if (!dataset_) dataset_ = std::make_unique<DatasetWriter>(output_.output_->tempPath(), options_);

@@ -54,6 +54,8 @@ class VectorOutput {
 
  private:
   friend class LayerStream;
+  /// The staging path of one layer's file when each layer has its own (layerPerFile_).
+  std::string layerFile(const std::string& layer) const;
   std::string path_;
   VectorWriteOptions options_;
   bool layerPerFile_ = false;  ///< one dataset per layer inside a folder output

@@ -114,8 +114,7 @@ CityResult vectorizeCity(const RoadNetwork& network, const Grid<std::uint8_t>& c
                          const GridSpec& grid, const CityOptions& options, const Progress& progress,
                          const LayerSink& sink) {
   CityResult result;
-  const LayerSink emit =
-      sink ? sink : LayerSink([&result](Layer&& l) { result.layers.push_back(std::move(l)); });
+  const LayerSink emit = sinkOrAppend(sink, result.layers);
   const Frame frame{grid};
   BlocksOptions blocksOptions = options.blocks;
   blocksOptions.road.threads = options.parcels.threads;  // one thread setting for every parallel stage

@@ -169,8 +169,7 @@ VectorizeResult runPipeline(const VectorizeInput& input, VectorizeInput* release
   };
 
   // Each output layer, as soon as it is final: to the sink, or kept in the result.
-  const LayerSink emit =
-      sink ? sink : LayerSink([&result](Layer&& l) { result.layers.push_back(std::move(l)); });
+  const LayerSink emit = sinkOrAppend(sink, result.layers);
 
   std::size_t roadCells = 0;
   for (std::uint8_t c : input.landUse.cells) roadCells += isRoadCode(c);
